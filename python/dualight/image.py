@@ -1,0 +1,157 @@
+"""Linear RGB images: numpy views, file I/O through OpenImageIO, and display in Jupyter."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+_LDR_SUFFIXES = {".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".webp"}
+_META_PREFIX = "dualight:"
+
+
+def srgb_encode(linear: np.ndarray) -> np.ndarray:
+    """The sRGB transfer function (IEC 61966-2-1) on values clipped to [0, 1]."""
+    x = np.clip(linear, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+
+
+def srgb_decode(encoded: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`srgb_encode`."""
+    x = np.clip(encoded, 0.0, 1.0)
+    return np.where(x <= 0.04045, x / 12.92, np.power((x + 0.055) / 1.055, 2.4))
+
+
+class Image:
+    """An H x W x 3 float32 linear RGB image with render statistics.
+
+    ``np.asarray(image)`` returns the pixel array itself (no copy). ``image.variance``, when
+    the estimator provides it, holds the variance of each pixel's mean estimate (same shape),
+    which the statistical tests in :mod:`dualight.metrics` use.
+    """
+
+    def __init__(
+        self,
+        pixels: Any,
+        *,
+        variance: np.ndarray | None = None,
+        stats: dict[str, Any] | None = None,
+    ) -> None:
+        arr = np.asarray(pixels)
+        if arr.ndim == 2:
+            arr = np.repeat(arr[:, :, None], 3, axis=2)
+        if arr.ndim != 3 or arr.shape[2] != 3:
+            raise ValueError(f"image pixels must be H x W x 3, got shape {arr.shape}")
+        if arr.dtype != np.float32:
+            arr = arr.astype(np.float32)
+        self._pixels = arr
+        if variance is not None:
+            variance = np.asarray(variance, dtype=np.float32)
+            if variance.shape != arr.shape:
+                raise ValueError(f"variance shape {variance.shape} differs from {arr.shape}")
+        self.variance = variance
+        self.stats: dict[str, Any] = dict(stats or {})
+
+    # numpy interoperability -------------------------------------------------------------
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        if copy:
+            return np.array(self._pixels, dtype=dtype, copy=True)
+        if dtype is not None and np.dtype(dtype) != self._pixels.dtype:
+            if copy is False:
+                raise ValueError("cannot convert the image's float32 pixels without a copy")
+            return self._pixels.astype(dtype)
+        return self._pixels
+
+    @property
+    def pixels(self) -> np.ndarray:
+        """The H x W x 3 float32 array (not a copy)."""
+        return self._pixels
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        return self._pixels.shape  # type: ignore[return-value]
+
+    @property
+    def width(self) -> int:
+        return self._pixels.shape[1]
+
+    @property
+    def height(self) -> int:
+        return self._pixels.shape[0]
+
+    def luminance(self) -> np.ndarray:
+        """Rec. 709 luminance, H x W."""
+        return self._pixels @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+
+    def tonemap(self, exposure: float = 0.0) -> np.ndarray:
+        """8-bit sRGB (H x W x 3 uint8) after scaling by ``2**exposure`` and clipping."""
+        encoded = srgb_encode(self._pixels.astype(np.float64) * 2.0**exposure)
+        return np.round(encoded * 255.0).astype(np.uint8)
+
+    # files ------------------------------------------------------------------------------
+    def save(self, path: str | os.PathLike[str], *, exposure: float = 0.0) -> Path:
+        """Write the image; the format follows the suffix (``.exr``, ``.hdr``, ``.png``, ...).
+
+        EXR keeps 32-bit floats and the stats as ``dualight:*`` string attributes. 8-bit
+        formats are tone mapped: scaled by ``2**exposure``, clipped, sRGB encoded.
+        """
+        path = Path(path)
+        if not path.parent.exists():
+            raise FileNotFoundError(f"directory does not exist: {path.parent}")
+        from dualight import _core
+
+        metadata = {_META_PREFIX + k: json.dumps(v) for k, v in self.stats.items()}
+        if path.suffix.lower() in _LDR_SUFFIXES:
+            metadata[_META_PREFIX + "exposure"] = json.dumps(exposure)
+            data = self.tonemap(exposure).astype(np.float32) / 255.0
+        else:
+            data = self._pixels
+        _core.write_image(str(path), np.ascontiguousarray(data), metadata)
+        return path
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Image:
+        """Read an image written by :meth:`save` or any file OpenImageIO reads.
+
+        8-bit files are sRGB-decoded back to linear values (and divided by the exposure they
+        were saved with, when recorded). Stats saved as metadata come back in ``.stats``.
+        """
+        path = Path(path)
+        if not path.is_file():
+            raise FileNotFoundError(f"no such image file: {path}")
+        from dualight import _core
+
+        pixels, metadata, low_dynamic_range = _core.read_image(str(path))
+        stats: dict[str, Any] = {}
+        for key, value in metadata.items():
+            if key.startswith(_META_PREFIX):
+                try:
+                    stats[key[len(_META_PREFIX) :]] = json.loads(value)
+                except json.JSONDecodeError:
+                    stats[key[len(_META_PREFIX) :]] = value
+        channels = pixels.shape[2]
+        if channels == 1:
+            pixels = np.repeat(pixels, 3, axis=2)
+        elif channels >= 3:
+            pixels = pixels[:, :, :3]
+        else:
+            raise ValueError(f"{path}: cannot read a {channels}-channel image as RGB")
+        if low_dynamic_range:
+            exposure = float(stats.pop("exposure", 0.0))
+            pixels = srgb_decode(pixels.astype(np.float64)) / 2.0**exposure
+        return cls(np.ascontiguousarray(pixels, dtype=np.float32), stats=stats)
+
+    # display ----------------------------------------------------------------------------
+    def _repr_png_(self) -> bytes:
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "image.png"
+            Image(self._pixels).save(path)
+            return path.read_bytes()
+
+    def __repr__(self) -> str:
+        keys = ", ".join(f"{k}={self.stats[k]!r}" for k in ("method", "spp") if k in self.stats)
+        return f"Image({self.width}x{self.height}{', ' + keys if keys else ''})"

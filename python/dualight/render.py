@@ -1,0 +1,155 @@
+"""`dualight.render`: one entry point for every image estimator."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from typing import Any
+
+from dualight.image import Image
+from dualight.scene import Camera, Scene
+
+METHODS = ("path",)
+
+ProgressCallback = Callable[[int, int], None]
+
+
+class _TqdmProgress:
+    """Adapts the core's (done, total) callback to a tqdm bar, created on first use."""
+
+    def __init__(self, description: str) -> None:
+        self._description = description
+        self._bar: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self._bar is None:
+            from tqdm.auto import tqdm
+
+            self._bar = tqdm(
+                total=total or None, desc=self._description, unit="spl", unit_scale=True
+            )
+        self._bar.n = done
+        self._bar.refresh()
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+
+
+def _check_int(name: str, value: Any, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return value
+
+
+def render(
+    scene: Scene,
+    method: str = "path",
+    *,
+    spp: int | None = 64,
+    time_limit: float | None = None,
+    max_depth: int = -1,
+    rr_depth: int = 5,
+    seed: int = 0,
+    threads: int | None = None,
+    progress: bool | ProgressCallback = True,
+    camera: Camera | None = None,
+) -> Image:
+    """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
+
+    Parameters
+    ----------
+    method:
+        ``"path"``: path tracing with next-event estimation and MIS (power heuristic).
+    spp:
+        Samples per pixel. ``None`` renders until ``time_limit``. With both, whichever ends
+        first stops the render (at a whole pass, so every pixel has the same count).
+    time_limit:
+        Seconds of wall time, or ``None``.
+    max_depth:
+        Longest path in segments, as in Mitsuba: 1 shows emitters only, 2 adds direct
+        lighting, -1 is unbounded.
+    rr_depth:
+        Russian roulette starts at this path vertex (Mitsuba's default 5).
+    seed:
+        The image is a deterministic function of the seed, whatever ``threads`` is.
+    threads:
+        Worker threads; ``None`` uses every core.
+    progress:
+        ``True`` shows a tqdm bar, ``False`` nothing; a callable gets ``(done, total)``
+        samples about every 100 ms.
+    camera:
+        Overrides ``scene.camera``.
+
+    Returns
+    -------
+    Image
+        With ``.variance`` (variance of each pixel's mean) and ``.stats`` (method, spp,
+        samples, rays, seconds, samples_per_second, ...).
+
+    Raises
+    ------
+    KeyboardInterrupt
+        On Ctrl-C, within about 0.1 s; the partial image is ``exc.partial_result``.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    if spp is None and time_limit is None:
+        raise ValueError("give spp, time_limit, or both")
+    if spp is not None:
+        _check_int("spp", spp, 1)
+        if spp >= 1 << 32:
+            raise ValueError(f"spp must be < 2**32, got {spp}")
+    if time_limit is not None and not (time_limit > 0):
+        raise ValueError(f"time_limit must be > 0 seconds, got {time_limit!r}")
+    if isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < -1:
+        raise ValueError(f"max_depth must be -1 (unbounded) or an integer >= 0, got {max_depth!r}")
+    _check_int("rr_depth", rr_depth, 1)
+    _check_int("seed", seed, 0)
+    if threads is not None:
+        _check_int("threads", threads, 1)
+        threads = min(threads, os.cpu_count() or threads)
+    if camera is not None and not isinstance(camera, Camera):
+        raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
+    scene.validate_for_rendering(camera)
+    cam = camera or scene.camera
+    assert cam is not None
+
+    from dualight import _core
+
+    options = _core.PathTracerOptions(
+        spp=spp or 0,
+        max_depth=max_depth,
+        rr_depth=rr_depth,
+        seed=seed,
+        threads=threads or 0,
+        time_limit=time_limit or 0.0,
+    )
+    bar = None
+    callback: ProgressCallback | None
+    if progress is True:
+        bar = _TqdmProgress(f"dualight {method}")
+        callback = bar
+    elif progress is False or progress is None:
+        callback = None
+    elif callable(progress):
+        callback = progress
+    else:
+        raise TypeError("progress must be True, False or a callable(done, total)")
+    try:
+        result = _core.render_path(scene._compile(), cam._compile(), options, callback)
+    finally:
+        if bar is not None:
+            bar.close()
+
+    stats = dict(result["stats"])
+    stats.update(method=method, seed=seed, max_depth=max_depth, rr_depth=rr_depth)
+    stats["threads"] = threads or os.cpu_count()
+    image = Image(result["mean"], variance=result["variance"], stats=stats)
+    if result["keyboard_interrupt"]:
+        interrupt = KeyboardInterrupt(f"render interrupted after {stats['samples']} samples")
+        interrupt.partial_result = image  # type: ignore[attr-defined]
+        raise interrupt
+    return image

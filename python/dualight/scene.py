@@ -1,0 +1,312 @@
+"""The scene you edit: a camera and triangle meshes with diffuse reflectance and emission.
+
+`Scene` is a plain Python description, validated as it is built. Rendering turns it into the
+immutable compiled scene (`dualight._core.Scene`), which commits Embree once and is cached until
+the description changes.
+
+Conventions (the same as Mitsuba 3):
+
+* A triangle's normal follows the right-hand rule on its vertex order,
+  ``n = (v1 - v0) x (v2 - v0)``. Emitters are one-sided: they emit on the normal's side only.
+* Reflectance is a two-sided Lambertian BRDF (Mitsuba: ``twosided`` around ``diffuse``).
+* The camera's ``fov`` is the full angle along x in degrees; row 0 of an image is its top.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from dualight import _core
+
+Vec3 = tuple[float, float, float]
+
+
+def _vec3(value: Any, name: str) -> Vec3:
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must be 3 numbers, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+    return (float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A pinhole camera.
+
+    Parameters
+    ----------
+    origin, target, up:
+        Eye position, a point it looks at, and the up direction (need not be orthogonal to the
+        view direction, but not parallel to it).
+    fov:
+        Full field of view along x, in degrees (Mitsuba's default ``fov_axis="x"``).
+    resolution:
+        ``(width, height)`` in pixels.
+    """
+
+    origin: Vec3 = (0.0, 0.0, 0.0)
+    target: Vec3 = (0.0, 0.0, 1.0)
+    up: Vec3 = (0.0, 1.0, 0.0)
+    fov: float = 40.0
+    resolution: tuple[int, int] = (128, 128)
+
+    def __post_init__(self) -> None:
+        origin = _vec3(self.origin, "camera origin")
+        target = _vec3(self.target, "camera target")
+        up = _vec3(self.up, "camera up")
+        object.__setattr__(self, "origin", origin)
+        object.__setattr__(self, "target", target)
+        object.__setattr__(self, "up", up)
+        fov = float(self.fov)
+        if not (math.isfinite(fov) and 0.0 < fov < 180.0):
+            raise ValueError(f"camera fov must be in (0, 180) degrees, got {self.fov}")
+        object.__setattr__(self, "fov", fov)
+        res = tuple(self.resolution)
+        if len(res) != 2 or not all(isinstance(v, int | np.integer) and v >= 1 for v in res):
+            raise ValueError(f"camera resolution must be (width, height) positive ints, got {res}")
+        if res[0] * res[1] > 1 << 28:
+            raise ValueError(f"camera resolution {res} is too large")
+        object.__setattr__(self, "resolution", (int(res[0]), int(res[1])))
+        view = np.subtract(target, origin)
+        if np.linalg.norm(view) == 0.0:
+            raise ValueError("camera target equals its origin")
+        side = np.cross(view / np.linalg.norm(view), up)
+        if np.linalg.norm(up) == 0.0 or np.linalg.norm(side) < 1e-6 * np.linalg.norm(up):
+            raise ValueError("camera up is zero or parallel to the view direction")
+
+    @property
+    def width(self) -> int:
+        return self.resolution[0]
+
+    @property
+    def height(self) -> int:
+        return self.resolution[1]
+
+    def with_resolution(self, width: int, height: int) -> Camera:
+        """The same camera with another resolution (the fov along x is kept)."""
+        return Camera(self.origin, self.target, self.up, self.fov, (width, height))
+
+    def _compile(self) -> _core.PinholeCamera:
+        from dualight import _core
+
+        return _core.PinholeCamera(
+            self.origin, self.target, self.up, self.fov, self.resolution[0], self.resolution[1]
+        )
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """A triangle mesh with one diffuse material. Arrays are read-only copies."""
+
+    vertices: np.ndarray  # (V, 3) float64
+    triangles: np.ndarray  # (T, 3) int64
+    reflectance: Vec3
+    emission: Vec3
+    name: str
+    areas: np.ndarray = field(repr=False)  # (T,) float64
+
+    @property
+    def is_emitter(self) -> bool:
+        return any(e > 0.0 for e in self.emission)
+
+
+def _triangulate(faces: Any, n_vertices: int, name: str) -> np.ndarray:
+    f = np.asarray(faces)
+    if f.ndim != 2 or f.shape[1] not in (3, 4):
+        raise ValueError(f"{name}: faces must have shape (F, 3) or (F, 4), got {f.shape}")
+    if f.shape[0] == 0:
+        raise ValueError(f"{name}: faces is empty")
+    if not np.issubdtype(f.dtype, np.integer):
+        if not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
+            raise ValueError(f"{name}: faces must hold integer vertex indices")
+    f = f.astype(np.int64)
+    bad = (f < 0) | (f >= n_vertices)
+    if np.any(bad):
+        row = int(np.argwhere(bad)[0][0])
+        raise ValueError(
+            f"{name}: face {row} has index {f[row].tolist()} out of range for {n_vertices} vertices"
+        )
+    if f.shape[1] == 4:  # quads (v0, v1, v2, v3) -> (v0, v1, v2), (v0, v2, v3)
+        f = np.stack([f[:, [0, 1, 2]], f[:, [0, 2, 3]]], axis=1).reshape(-1, 3)
+    return f
+
+
+def _colour(value: Any, name: str, *, upper: float | None) -> Vec3:
+    rgb = _vec3(value, name)
+    if any(c < 0.0 for c in rgb):
+        raise ValueError(f"{name} must be >= 0, got {rgb}")
+    if upper is not None and any(c > upper for c in rgb):
+        raise ValueError(f"{name} must be <= {upper} (energy conservation), got {rgb}")
+    return rgb
+
+
+class Scene:
+    """A camera and diffuse triangle meshes, some of them emitters.
+
+    Examples
+    --------
+    >>> scene = dualight.Scene(camera=dualight.Camera(origin=(0, 1, -3), target=(0, 1, 0)))
+    >>> scene.add_mesh(vertices, faces, reflectance=(0.7, 0.7, 0.7))
+    >>> scene.add_mesh(light_v, light_f, reflectance=(0, 0, 0), emission=(10, 10, 10))
+    >>> image = dualight.render(scene, spp=64)
+    """
+
+    def __init__(self, camera: Camera | None = None) -> None:
+        if camera is not None and not isinstance(camera, Camera):
+            raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
+        self._camera = camera
+        self._meshes: list[Mesh] = []
+        self._compiled: _core.Scene | None = None
+
+    @property
+    def camera(self) -> Camera | None:
+        return self._camera
+
+    @camera.setter
+    def camera(self, camera: Camera) -> None:
+        if not isinstance(camera, Camera):
+            raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
+        self._camera = camera
+
+    @property
+    def meshes(self) -> tuple[Mesh, ...]:
+        return tuple(self._meshes)
+
+    @property
+    def triangle_count(self) -> int:
+        return sum(len(m.triangles) for m in self._meshes)
+
+    @property
+    def has_emitters(self) -> bool:
+        return any(m.is_emitter for m in self._meshes)
+
+    def add_mesh(
+        self,
+        vertices: Any,
+        faces: Any,
+        reflectance: Sequence[float] = (0.5, 0.5, 0.5),
+        emission: Sequence[float] = (0.0, 0.0, 0.0),
+        *,
+        name: str | None = None,
+        degenerate: Literal["raise", "drop"] = "raise",
+    ) -> int:
+        """Add a triangle or quad mesh with one diffuse material; returns its index.
+
+        Parameters
+        ----------
+        vertices:
+            ``(V, 3)`` finite positions.
+        faces:
+            ``(F, 3)`` triangles or ``(F, 4)`` quads of vertex indices. Quads are split along
+            their ``v0-v2`` diagonal and should be planar.
+        reflectance:
+            Diffuse albedo per RGB channel, each in ``[0, 1]``.
+        emission:
+            Radiance (W m^-2 sr^-1) leaving the front side (the right-hand-rule normal), ``>= 0``.
+        degenerate:
+            Zero-area triangles are an error (``"raise"``, the default, naming the first one) or
+            are removed with a warning (``"drop"``, for meshes loaded from files).
+        """
+        name = name or f"mesh{len(self._meshes)}"
+        v = np.array(vertices, dtype=np.float64, copy=True)
+        if v.ndim != 2 or v.shape[1] != 3 or v.shape[0] == 0:
+            raise ValueError(f"{name}: vertices must have shape (V, 3) with V > 0, got {v.shape}")
+        if not np.all(np.isfinite(v)):
+            row = int(np.argwhere(~np.isfinite(v))[0][0])
+            raise ValueError(f"{name}: vertex {row} is not finite (NaN or Inf): {v[row].tolist()}")
+        if np.abs(v).max() > 1e30:
+            raise ValueError(
+                f"{name}: vertex coordinates beyond 1e30 cannot be rendered in float32"
+            )
+        tris = _triangulate(faces, len(v), name)
+        rho = _colour(reflectance, f"{name}: reflectance", upper=1.0)
+        Le = _colour(emission, f"{name}: emission", upper=None)
+
+        # Areas in float32, as the renderer will see the triangles.
+        v32 = v.astype(np.float32)
+        cr = np.cross(v32[tris[:, 1]] - v32[tris[:, 0]], v32[tris[:, 2]] - v32[tris[:, 0]])
+        areas = 0.5 * np.linalg.norm(cr.astype(np.float64), axis=1)
+        zero = ~(areas > 0.0)
+        if np.any(zero):
+            if degenerate == "raise":
+                first = int(np.argmax(zero))
+                raise ValueError(
+                    f"{name}: {int(zero.sum())} zero-area triangle(s), the first is triangle "
+                    f"{first} with vertices {tris[first].tolist()}; pass degenerate='drop' to "
+                    "remove them"
+                )
+            if degenerate != "drop":
+                raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
+            warnings.warn(f"{name}: dropped {int(zero.sum())} zero-area triangle(s)", stacklevel=2)
+            tris, areas = tris[~zero], areas[~zero]
+            if len(tris) == 0:
+                raise ValueError(f"{name}: every triangle has zero area")
+        for arr in (v, tris, areas):
+            arr.flags.writeable = False
+        self._meshes.append(Mesh(v, tris, rho, Le, name, areas))
+        self._compiled = None
+        return len(self._meshes) - 1
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Axis-aligned bounding box ``(min, max)`` of all vertices."""
+        if not self._meshes:
+            raise ValueError("scene is empty: add a mesh first")
+        lo = np.min([m.vertices.min(axis=0) for m in self._meshes], axis=0)
+        hi = np.max([m.vertices.max(axis=0) for m in self._meshes], axis=0)
+        return lo, hi
+
+    def validate_for_rendering(self, camera: Camera | None = None) -> None:
+        """Raise ``ValueError`` if the scene cannot be rendered (empty, no emitter, no camera).
+
+        ``camera`` stands in for a missing ``scene.camera``.
+        """
+        if not self._meshes:
+            raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+        if not self.has_emitters:
+            raise ValueError("scene has no emitter: give some mesh a positive emission")
+        if self._camera is None and camera is None:
+            raise ValueError("scene has no camera: pass camera=dualight.Camera(...)")
+
+    def _compile(self) -> _core.Scene:
+        """The immutable compiled scene (cached until the description changes)."""
+        if self._compiled is None:
+            from dualight import _core
+
+            if not self._meshes:
+                raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+            offsets = np.cumsum([0] + [len(m.vertices) for m in self._meshes[:-1]])
+            positions = np.concatenate([m.vertices for m in self._meshes]).astype(np.float32)
+            triangles = np.concatenate(
+                [m.triangles + off for m, off in zip(self._meshes, offsets, strict=True)]
+            ).astype(np.uint32)
+            material_of = np.concatenate(
+                [np.full(len(m.triangles), i, np.uint32) for i, m in enumerate(self._meshes)]
+            )
+            reflectance = np.array([m.reflectance for m in self._meshes], np.float32)
+            emission = np.array([m.emission for m in self._meshes], np.float32)
+            self._compiled = _core.Scene(positions, triangles, material_of, reflectance, emission)
+        return self._compiled
+
+    def to_mitsuba(self, **kwargs: Any) -> dict[str, Any]:
+        """A dict for ``mitsuba.load_dict`` describing this scene with matching conventions.
+
+        Keywords are those of :func:`dualight.mitsuba.scene_dict` (``spp``, ``max_depth``,
+        ``rr_depth``, ``integrator``, ...).
+        """
+        from dualight import mitsuba
+
+        return mitsuba.scene_dict(self, **kwargs)
+
+    def __repr__(self) -> str:
+        return (
+            f"Scene({len(self._meshes)} meshes, {self.triangle_count} triangles, "
+            f"camera={self._camera})"
+        )

@@ -1,0 +1,97 @@
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings/numpy_util.h"
+#include "core/parallel.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+
+namespace dualight::bindings {
+
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using IndexArray = py::array_t<uint32_t, py::array::c_style | py::array::forcecast>;
+
+Vec3 to_vec3(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray& triangles,
+                                  const IndexArray& material_of, const FloatArray& reflectance,
+                                  const FloatArray& emission) {
+  std::vector<float> p = rows_of(positions, 3, "positions");
+  std::vector<uint32_t> t = rows_of(triangles, 3, "triangles");
+  if (material_of.ndim() != 1) throw py::value_error("material_of must be one-dimensional");
+  std::vector<uint32_t> m(material_of.data(), material_of.data() + material_of.size());
+  const std::vector<float> rho = rows_of(reflectance, 3, "reflectance");
+  const std::vector<float> Le = rows_of(emission, 3, "emission");
+  if (rho.size() != Le.size()) throw py::value_error("reflectance and emission need one row per material");
+  std::vector<Material> materials;
+  for (size_t i = 0; i < rho.size() / 3; ++i) {
+    materials.push_back({Lambertian{Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2])},
+                         Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
+  }
+  py::gil_scoped_release release;  // the BVH build can take a while on large meshes
+  return std::make_shared<Scene>(std::move(p), std::move(t), std::move(m), std::move(materials));
+}
+
+}  // namespace
+
+void bind_geometry(py::module_& m) {
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene",
+                                            "Immutable triangle scene committed to Embree (built by dualight.Scene).")
+      .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
+           py::arg("reflectance"), py::arg("emission"))
+      .def_property_readonly("triangle_count", &Scene::triangle_count)
+      .def_property_readonly("emitter_count", &Scene::emitter_count)
+      .def_property_readonly("bounds",
+                             [](const Scene& s) {
+                               const Vec3 lo = s.bounds_min(), hi = s.bounds_max();
+                               return std::make_pair(std::array<float, 3>{lo.x, lo.y, lo.z},
+                                                     std::array<float, 3>{hi.x, hi.y, hi.z});
+                             })
+      .def(
+          "intersect",
+          [](const Scene& s, const FloatArray& origins, const FloatArray& directions) {
+            const std::vector<float> o = rows_of(origins, 3, "origins");
+            const std::vector<float> d = rows_of(directions, 3, "directions");
+            if (o.size() != d.size()) throw py::value_error("origins and directions differ in length");
+            const size_t n = o.size() / 3;
+            std::vector<float> t(n, std::numeric_limits<float>::infinity());
+            std::vector<int64_t> prim(n, -1);
+            {
+              py::gil_scoped_release release;
+              for (size_t i = 0; i < n; ++i) {
+                SurfaceHit hit;
+                const Ray ray{{o[3 * i], o[3 * i + 1], o[3 * i + 2]}, {d[3 * i], d[3 * i + 1], d[3 * i + 2]}};
+                if (s.intersect(ray, hit)) {
+                  t[i] = hit.t;
+                  prim[i] = hit.prim;
+                }
+              }
+            }
+            return py::make_tuple(to_numpy(std::move(t), {static_cast<py::ssize_t>(n)}),
+                                  to_numpy(std::move(prim), {static_cast<py::ssize_t>(n)}));
+          },
+          py::arg("origins"), py::arg("directions"),
+          "Closest hits of rays: (t, triangle index or -1); directions need not be normalised.");
+
+  py::class_<PinholeCamera>(m, "PinholeCamera", "Pinhole camera (built by dualight.Camera).")
+      .def(py::init([](const std::array<float, 3>& origin, const std::array<float, 3>& target,
+                       const std::array<float, 3>& up, float fov, int width, int height) {
+             return PinholeCamera(to_vec3(origin), to_vec3(target), to_vec3(up), fov, width, height);
+           }),
+           py::arg("origin"), py::arg("target"), py::arg("up"), py::arg("fov"), py::arg("width"),
+           py::arg("height"))
+      .def_property_readonly("width", &PinholeCamera::width)
+      .def_property_readonly("height", &PinholeCamera::height)
+      .def(
+          "generate_ray",
+          [](const PinholeCamera& c, float x, float y) {
+            const Ray r = c.generate_ray(x, y);
+            return py::make_tuple(std::array<float, 3>{r.o.x, r.o.y, r.o.z}, std::array<float, 3>{r.d.x, r.d.y, r.d.z});
+          },
+          py::arg("x"), py::arg("y"), "Ray (origin, unit direction) through film position (x, y) in pixels.");
+}
+
+}  // namespace dualight::bindings

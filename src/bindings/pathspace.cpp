@@ -1,0 +1,95 @@
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings/interruptible.h"
+#include "bindings/numpy_util.h"
+#include "pathspace/path_tracer.h"
+#include "pathspace/ray_benchmark.h"
+
+namespace dualight::bindings {
+
+namespace {
+
+py::dict stats_dict(const RenderStats& s) {
+  py::dict d;
+  d["samples"] = s.samples;
+  d["rays"] = s.rays;
+  d["invalid_samples"] = s.invalid_samples;
+  d["spp"] = s.spp;
+  d["seconds"] = s.seconds;
+  d["samples_per_second"] = s.seconds > 0 ? static_cast<double>(s.samples) / s.seconds : 0.0;
+  d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
+  d["interrupted"] = s.interrupted;
+  d["time_limited"] = s.time_limited;
+  return d;
+}
+
+// Film and stats as numpy arrays and a dict; the arrays own the film's buffers.
+py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
+  const py::ssize_t h = r.film.height(), w = r.film.width();
+  py::dict d;
+  d["mean"] = to_numpy(r.film.mean(), {h, w, 3});
+  d["variance"] = to_numpy(r.film.variance_of_mean(), {h, w, 3});
+  d["counts"] = to_numpy(r.film.sample_counts(), {h, w});
+  d["stats"] = stats_dict(r.stats);
+  d["keyboard_interrupt"] = keyboard_interrupt;
+  return d;
+}
+
+}  // namespace
+
+void bind_pathspace(py::module_& m) {
+  py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
+      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit) {
+             if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
+             if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
+             if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
+             if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
+             if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
+             return PathTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit};
+           }),
+           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
+           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0)
+      .def_readonly("spp", &PathTracerOptions::spp)
+      .def_readonly("max_depth", &PathTracerOptions::max_depth)
+      .def_readonly("rr_depth", &PathTracerOptions::rr_depth)
+      .def_readonly("seed", &PathTracerOptions::seed)
+      .def_readonly("threads", &PathTracerOptions::threads)
+      .def_readonly("time_limit", &PathTracerOptions::time_limit);
+
+  m.def(
+      "render_path",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const PathTracerOptions& options,
+         const py::object& progress) {
+        if (scene->emitter_count() == 0) throw py::value_error("scene has no emitter: nothing would be lit");
+        RenderControl control;
+        auto run = run_interruptible([&] { return render_path(*scene, camera, options, control); }, control,
+                                     progress);
+        return result_dict(std::move(run.result), run.keyboard_interrupt);
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      "Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). "
+      "progress(done, total) is called about every 100 ms.");
+
+  m.def(
+      "cast_random_rays",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, uint64_t n_rays, uint64_t seed,
+         int threads) {
+        RayCastStats s;
+        {
+          py::gil_scoped_release release;
+          s = cast_random_rays(*scene, camera, n_rays, seed, threads);
+        }
+        py::dict d;
+        d["rays"] = s.rays;
+        d["hits"] = s.hits;
+        d["seconds"] = s.seconds;
+        d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
+        return d;
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("n_rays"), py::arg("seed") = 0, py::arg("threads") = 0,
+      "Embree-only cast of incoherent rays (no shading): the ray-tracing limit for this scene.");
+}
+
+}  // namespace dualight::bindings

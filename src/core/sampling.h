@@ -1,0 +1,46 @@
+// Warps from the unit square and the MIS heuristics; each warp's pdf sits beside it.
+#pragma once
+#include <cmath>
+
+#include "core/vec3.h"
+
+namespace dualight {
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInvPi = 0.31830988618379067154f;
+
+struct Point2 {
+  float u, v;
+};
+
+// Cosine-weighted hemisphere around +z (Malley's method on a concentric disk [Shirley-Chiu 1997]).
+inline Vec3 square_to_cosine_hemisphere(Point2 p) {
+  const float a = 2.f * p.u - 1.f, b = 2.f * p.v - 1.f;
+  float r = 0.f, phi = 0.f;
+  if (a != 0.f || b != 0.f) {
+    if (a * a > b * b) {
+      r = a;
+      phi = (kPi / 4.f) * (b / a);
+    } else {
+      r = b;
+      phi = (kPi / 2.f) - (kPi / 4.f) * (a / b);
+    }
+  }
+  const float x = r * std::cos(phi), y = r * std::sin(phi);
+  return {x, y, std::sqrt(std::max(0.f, 1.f - x * x - y * y))};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? cos_theta * kInvPi : 0.f; }
+
+// Uniform barycentrics (b1, b2) on a triangle; b0 = 1 - b1 - b2.
+inline Point2 square_to_uniform_triangle(Point2 p) {
+  const float su = std::sqrt(p.u);
+  return {p.v * su, 1.f - su};
+}
+
+// [Veach 1997, eq. 9.13] with beta = 2; pdfs of one sample per technique.
+inline float power_heuristic(float pdf_a, float pdf_b) {
+  const float a2 = pdf_a * pdf_a, b2 = pdf_b * pdf_b;
+  return a2 > 0.f ? a2 / (a2 + b2) : 0.f;
+}
+
+}  // namespace dualight

@@ -1,0 +1,57 @@
+#include "film/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <memory>
+#include <stdexcept>
+
+namespace dualight {
+
+namespace {
+
+// File formats that can hold float samples; everything else gets 8 bits per channel.
+bool holds_float(const std::string& format) {
+  return format == "openexr" || format == "hdr" || format == "tiff" || format == "fits" || format == "pfm";
+}
+
+}  // namespace
+
+void write_image(const std::string& path, int width, int height, int channels, const float* pixels,
+                 const ImageMetadata& metadata) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::invalid_argument("cannot write '" + path + "': " + OIIO::geterror());
+  const std::string format = out->format_name();
+  const OIIO::TypeDesc storage = holds_float(format) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  OIIO::ImageSpec spec(width, height, channels, storage);
+  if (format == "openexr") spec.attribute("compression", "zip");
+  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  if (!out->open(path, spec)) throw std::runtime_error("cannot open '" + path + "': " + out->geterror());
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels)) {
+    throw std::runtime_error("cannot write '" + path + "': " + out->geterror());
+  }
+  if (!out->close()) throw std::runtime_error("cannot close '" + path + "': " + out->geterror());
+}
+
+LoadedImage read_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::invalid_argument("cannot read image '" + path + "': " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  LoadedImage img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = spec.nchannels;
+  img.low_dynamic_range = !(spec.format.basetype == OIIO::TypeDesc::FLOAT ||
+                            spec.format.basetype == OIIO::TypeDesc::HALF ||
+                            spec.format.basetype == OIIO::TypeDesc::DOUBLE);
+  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
+  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
+    throw std::invalid_argument("cannot decode image '" + path + "': " + in->geterror());
+  }
+  for (const OIIO::ParamValue& p : spec.extra_attribs) {
+    if (p.type() == OIIO::TypeDesc::STRING) img.metadata[p.name().string()] = p.get_string();
+  }
+  in->close();
+  return img;
+}
+
+}  // namespace dualight

@@ -1,0 +1,77 @@
+// The scene as rendered: immutable triangles with materials and emitters, committed to Embree
+// once at construction. Everything that renders takes a `const Scene&`.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/distribution.h"
+#include "core/ray.h"
+#include "core/sampling.h"
+#include "geometry/embree_accel.h"
+#include "materials/bsdf.h"
+
+namespace dualight {
+
+struct Material {
+  Bsdf bsdf;
+  Color emission;  // radiance leaving the front side (the side of the right-hand-rule normal)
+};
+
+struct SurfaceHit {
+  Vec3 p;          // position, from barycentrics (more accurate than o + t d)
+  Vec3 n;          // unit geometric normal, right-hand rule on the triangle's vertex order
+  float t = 0.f;
+  uint32_t prim = 0;
+  const Material* material = nullptr;
+};
+
+struct EmitterSample {
+  Vec3 p, n;
+  Color Le;           // radiance leaving p on the front side
+  float pdf_a = 0.f;  // area density, including the choice of triangle
+};
+
+class Scene {
+ public:
+  // positions: xyz per vertex; triangles: 3 vertex indices each; material_of: index per triangle.
+  // Throws std::invalid_argument on any malformed input (the Python layer validates first, so
+  // these checks guard the C++ API itself).
+  Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
+        std::vector<Material> materials);
+
+  size_t triangle_count() const { return area_.size(); }
+  size_t emitter_count() const { return emissive_.size(); }
+  Vec3 bounds_min() const { return bounds_min_; }
+  Vec3 bounds_max() const { return bounds_max_; }
+
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  bool occluded(const Ray& ray) const { return accel_->occluded(ray); }
+  // Unoccluded between two surface points, each offset along its normal towards the other.
+  bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, const Vec3& n1) const;
+
+  EmitterSample sample_emitter(float u_select, Point2 u) const;
+  // Area density of sample_emitter producing a point on triangle `prim`.
+  float emitter_pdf_a(uint32_t prim) const;
+  // Radiance leaving a surface point towards w (one-sided emitters).
+  static Color emitted(const SurfaceHit& hit, const Vec3& w) {
+    return dot(hit.n, w) > 0.f ? hit.material->emission : Color(0.f);
+  }
+
+ private:
+  Vec3 vertex(uint32_t prim, int corner) const;
+
+  std::vector<float> positions_;
+  std::vector<uint32_t> triangles_;
+  std::vector<uint32_t> material_of_;
+  std::vector<Material> materials_;
+  std::vector<Vec3> normal_;
+  std::vector<float> area_;
+  std::vector<uint32_t> emissive_;            // triangle ids with non-zero emission
+  std::vector<float> emitter_pmf_by_prim_;    // selection probability, 0 for non-emitters
+  DiscreteDistribution emitter_distribution_;  // over emissive_, proportional to power
+  Vec3 bounds_min_, bounds_max_;
+  std::unique_ptr<EmbreeAccel> accel_;
+};
+
+}  // namespace dualight

@@ -1,0 +1,98 @@
+#include "pathspace/path_tracer.h"
+
+#include "core/frame.h"
+#include "core/sampling.h"
+#include "pathspace/pixel_driver.h"
+
+namespace dualight {
+
+namespace {
+
+// One camera path; returns its radiance estimate.
+Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Pcg32& rng,
+                 uint64_t& rays) {
+  const bool has_emitters = scene.emitter_count() > 0;
+  const auto depth_allows = [&](int segments) { return opt.max_depth < 0 || segments <= opt.max_depth; };
+
+  Color L(0.f), beta(1.f);
+  Ray ray = camera_ray;
+  float prev_pdf_w = 0.f;  // solid-angle density of the BSDF sample that made `ray`
+  // `depth` is the number of segments up to and including `ray`, i.e. the index of the vertex it hits.
+  for (int depth = 1; depth_allows(depth); ++depth) {
+    SurfaceHit hit;
+    ++rays;
+    if (!scene.intersect(ray, hit)) break;
+
+    const Vec3 wo_world = -ray.d;
+    const Color Le = Scene::emitted(hit, wo_world);
+    if (!is_black(Le)) {
+      if (depth == 1) {
+        L += beta * Le;
+      } else {
+        // The same point could have been found by next-event estimation from the previous vertex.
+        const float cos_light = std::abs(dot(hit.n, wo_world));
+        const float pdf_light_w = scene.emitter_pdf_a(hit.prim) * hit.t * hit.t / cos_light;
+        L += beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
+      }
+    }
+    if (!depth_allows(depth + 1)) break;
+
+    // Two-sided surfaces: shade in a frame whose normal faces the arriving path.
+    const Vec3 ns = dot(hit.n, wo_world) > 0.f ? hit.n : -hit.n;
+    const Frame frame = Frame::from_normal(ns);
+    const Vec3 wo = frame.to_local(wo_world);
+    const Bsdf& bsdf = hit.material->bsdf;
+
+    if (has_emitters) {
+      const float u_select = rng.next_float();
+      const Point2 u_light{rng.next_float(), rng.next_float()};
+      const EmitterSample es = scene.sample_emitter(u_select, u_light);
+      const Vec3 to_light = es.p - hit.p;
+      const float dist2 = dot(to_light, to_light);
+      const Vec3 wi_world = to_light / std::sqrt(dist2);
+      const float cos_light = -dot(es.n, wi_world);
+      if (cos_light > 0.f && dist2 > 0.f) {
+        const Vec3 wi = frame.to_local(wi_world);
+        const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
+        if (!is_black(f)) {
+          ++rays;
+          if (scene.visible(hit.p, ns, es.p, es.n)) {
+            const float pdf_light_w = es.pdf_a * dist2 / cos_light;
+            const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
+            const float weight = power_heuristic(pdf_light_w, pdf_bsdf_w);
+            L += beta * f * es.Le * (std::abs(wi.z) * weight / pdf_light_w);
+          }
+        }
+      }
+    }
+
+    BsdfSample bs;
+    if (!sample(bsdf, wo, Point2{rng.next_float(), rng.next_float()}, TransportMode::Radiance, bs)) break;
+    beta *= bs.weight;
+    prev_pdf_w = bs.pdf_w;
+    const Vec3 wi_world = frame.to_world(bs.wi);
+    ray = Ray{offset_ray_origin(hit.p, bs.wi.z > 0.f ? ns : -ns), wi_world};
+
+    if (depth >= opt.rr_depth) {
+      const float q = std::min(max_component(beta), 0.95f);
+      if (!(rng.next_float() < q)) break;
+      beta /= q;
+    }
+  }
+  return L;
+}
+
+}  // namespace
+
+RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
+                         RenderControl& control) {
+  RenderResult result{Film(camera.width(), camera.height()), {}};
+  const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit};
+  result.stats = drive_pixels(result.film, driver, control,
+                              [&](float x, float y, Pcg32& rng, uint64_t& rays) {
+                                return trace_path(scene, camera.generate_ray(x, y), options, rng, rays);
+                              });
+  return result;
+}
+
+}  // namespace dualight

@@ -1,0 +1,33 @@
+// Unidirectional path tracer: gathers radiance from the eye with next-event estimation and
+// BSDF sampling combined by multiple importance sampling [Veach 1997, ch. 9; Kajiya 1986].
+// Depth counts path segments as in Mitsuba: max_depth = 1 shows emitters only, 2 adds direct
+// lighting, -1 is unbounded. Russian roulette starts at vertex rr_depth (Mitsuba's default 5).
+#pragma once
+#include <cstdint>
+
+#include "core/render_control.h"
+#include "film/film.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+struct PathTracerOptions {
+  uint32_t spp = 64;          // 0 = unbounded (then time_limit must be set)
+  int max_depth = -1;
+  int rr_depth = 5;
+  uint64_t seed = 0;
+  int threads = 0;            // 0 = all cores
+  double time_limit = 0.0;    // seconds; 0 = none
+};
+
+struct RenderResult {
+  Film film;
+  RenderStats stats;
+};
+
+RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
+                         RenderControl& control);
+
+}  // namespace dualight

@@ -1,0 +1,102 @@
+// Drives any per-pixel estimator: tiles on TBB threads, progressive passes of samples per pixel,
+// a time limit, cancellation, and stats. Each (pixel, sample index) pair gets its own random
+// stream, so the image is the same for any thread count, pass size or schedule.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "core/render_control.h"
+#include "core/rng.h"
+#include "film/film.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+struct PixelDriverOptions {
+  uint32_t spp = 64;  // 0 = until time_limit
+  uint64_t seed = 0;
+  int threads = 0;
+  double time_limit = 0.0;
+};
+
+// estimate(x, y, rng, rays) returns the sample value for film position (x, y) in pixels and adds
+// the rays it traced to `rays`.
+template <class Estimate>
+RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderControl& control,
+                         const Estimate& estimate) {
+  using Clock = std::chrono::steady_clock;
+  constexpr int kTile = 16;
+  const int w = film.width(), h = film.height();
+  const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
+  const size_t n_tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  const uint64_t n_pixels = static_cast<uint64_t>(w) * h;
+  const bool unbounded = opt.spp == 0;
+  control.total.store(unbounded ? 0 : n_pixels * opt.spp);
+
+  std::atomic<uint64_t> rays{0}, invalid{0};
+  RenderStats stats;
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  uint32_t spp_done = 0;
+  uint32_t pass_spp = 1;
+  while ((unbounded || spp_done < opt.spp) && !control.cancelled()) {
+    if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
+      stats.time_limited = true;
+      break;
+    }
+    const uint32_t first = spp_done;
+    const uint32_t count = unbounded ? pass_spp : std::min(pass_spp, opt.spp - spp_done);
+    const double pass_start = elapsed();
+    parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
+      const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
+      uint64_t local_rays = 0, local_invalid = 0;
+      for (int y = y0; y < std::min(y0 + kTile, h); ++y) {
+        for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
+          if (control.cancelled()) break;
+          const size_t pixel = static_cast<size_t>(y) * w + x;
+          for (uint32_t s = first; s < first + count; ++s) {
+            Pcg32 rng(hash_combine(opt.seed, pixel), s);
+            const float fx = static_cast<float>(x) + rng.next_float();
+            const float fy = static_cast<float>(y) + rng.next_float();
+            Color value = estimate(fx, fy, rng, local_rays);
+            if (!is_finite(value)) {
+              value = Color(0.f);
+              ++local_invalid;
+            }
+            film.add_sample(pixel, value);
+          }
+          control.done.fetch_add(count, std::memory_order_relaxed);
+        }
+      }
+      rays.fetch_add(local_rays, std::memory_order_relaxed);
+      invalid.fetch_add(local_invalid, std::memory_order_relaxed);
+    });
+    if (control.cancelled()) break;
+    spp_done += count;
+    // Aim for passes of about a quarter second so time limits and progress stay responsive.
+    const double pass_seconds = std::max(elapsed() - pass_start, 1e-6);
+    const double per_spp = pass_seconds / count;
+    pass_spp = static_cast<uint32_t>(std::clamp(0.25 / per_spp, 1.0, 4096.0));
+  }
+
+  stats.seconds = elapsed();
+  stats.rays = rays.load();
+  stats.invalid_samples = invalid.load();
+  stats.interrupted = control.cancelled();
+  const std::vector<uint32_t> counts = film.sample_counts();
+  uint64_t total = 0;
+  uint32_t min_count = counts.empty() ? 0 : counts[0];
+  for (const uint32_t c : counts) {
+    total += c;
+    min_count = std::min(min_count, c);
+  }
+  stats.samples = total;
+  stats.spp = min_count;
+  return stats;
+}
+
+}  // namespace dualight

@@ -1,0 +1,17 @@
+// What every image estimator reports besides its image.
+#pragma once
+#include <cstdint>
+
+namespace dualight {
+
+struct RenderStats {
+  uint64_t samples = 0;          // camera samples (paths) completed
+  uint64_t rays = 0;             // closest-hit and shadow rays traced
+  uint64_t invalid_samples = 0;  // NaN/Inf path contributions, zeroed and counted
+  uint32_t spp = 0;              // samples per pixel completed by every pixel
+  double seconds = 0.0;
+  bool interrupted = false;
+  bool time_limited = false;     // stopped by time_limit before reaching spp
+};
+
+}  // namespace dualight

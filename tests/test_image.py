@@ -1,0 +1,61 @@
+"""Images: numpy without copies, and file round trips through OpenImageIO."""
+
+from __future__ import annotations
+
+import dualight
+import numpy as np
+import pytest
+
+
+@pytest.fixture
+def image(rng) -> dualight.Image:
+    pixels = rng.uniform(0.0, 4.0, size=(12, 20, 3)).astype(np.float32)
+    return dualight.Image(pixels, stats={"method": "path", "spp": 16, "seed": 3, "seconds": 0.25})
+
+
+def test_asarray_is_not_a_copy(image) -> None:
+    arr = np.asarray(image)
+    assert arr is image.pixels and arr.dtype == np.float32 and arr.shape == (12, 20, 3)
+    assert np.shares_memory(np.asarray(image), image.pixels)
+    assert not np.shares_memory(np.array(image, copy=True), image.pixels)
+
+
+def test_exr_round_trip_is_exact_with_metadata(image, tmp_path) -> None:
+    path = image.save(tmp_path / "a.exr")
+    loaded = dualight.Image.load(path)
+    assert np.array_equal(np.asarray(loaded), np.asarray(image))
+    assert loaded.stats == image.stats
+
+
+def test_hdr_round_trip_within_rgbe_precision(image, tmp_path) -> None:
+    loaded = dualight.Image.load(image.save(tmp_path / "a.hdr"))
+    # RGBE shares one exponent per pixel: 8 mantissa bits relative to the largest channel.
+    bound = np.asarray(image).max(axis=2, keepdims=True) / 128.0
+    assert np.all(np.abs(np.asarray(loaded) - np.asarray(image)) <= bound)
+
+
+def test_png_is_srgb_tone_mapped_and_decodes_back(image, tmp_path) -> None:
+    path = image.save(tmp_path / "a.png", exposure=-2.0)
+    loaded = dualight.Image.load(path)
+    # 8-bit sRGB: within half a code value of the clipped input. The decoding curve's slope is
+    # at most 2.4 / 1.055 (at 1.0), and the exposure of -2 stops scales errors back up by 4.
+    expected = np.clip(np.asarray(image) * 0.25, 0, 1) * 4.0
+    np.testing.assert_allclose(np.asarray(loaded), expected, atol=4.0 * 2.28 * 0.5 / 255)
+    assert loaded.stats["method"] == "path"
+    png = image._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_bad_files_raise_clear_errors(image, tmp_path) -> None:
+    with pytest.raises(FileNotFoundError, match="no such image"):
+        dualight.Image.load(tmp_path / "missing.exr")
+    garbage = tmp_path / "garbage.exr"
+    garbage.write_bytes(b"not an image at all")
+    with pytest.raises(ValueError, match="cannot read image"):
+        dualight.Image.load(garbage)
+    with pytest.raises(FileNotFoundError, match="directory does not exist"):
+        image.save(tmp_path / "nope" / "a.exr")
+    with pytest.raises(ValueError, match="cannot write"):
+        image.save(tmp_path / "a.unknownformat")
+    with pytest.raises(ValueError, match="H x W x 3"):
+        dualight.Image(np.zeros((4, 4, 2)))

@@ -1,0 +1,153 @@
+"""Scene description: validation of every kind of bad input, and the compiled scene's rays."""
+
+from __future__ import annotations
+
+import dualight
+import numpy as np
+import pytest
+from dualight import _core
+
+QUAD_V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float64)
+QUAD_F = np.array([[0, 1, 2, 3]])
+
+
+@pytest.mark.parametrize(
+    ("vertices", "faces", "kwargs", "message"),
+    [
+        (QUAD_V * np.nan, QUAD_F, {}, "not finite"),
+        (np.where(QUAD_V == 1, np.inf, QUAD_V), QUAD_F, {}, "not finite"),
+        (QUAD_V[:, :2], QUAD_F, {}, r"shape \(V, 3\)"),
+        (np.zeros((0, 3)), QUAD_F, {}, r"shape \(V, 3\)"),
+        (QUAD_V, np.array([[0, 1, 7]]), {}, "out of range"),
+        (QUAD_V, np.array([[0, -1, 2]]), {}, "out of range"),
+        (QUAD_V, np.array([[0, 1]]), {}, r"\(F, 3\) or \(F, 4\)"),
+        (QUAD_V, np.zeros((0, 3), int), {}, "faces is empty"),
+        (QUAD_V, np.array([[0, 1.5, 2]]), {}, "integer"),
+        (QUAD_V, np.array([[0, 1, 1]]), {}, "zero-area"),
+        (QUAD_V, QUAD_F, {"reflectance": (0.5, 1.2, 0.5)}, "<= 1"),
+        (QUAD_V, QUAD_F, {"reflectance": (-0.1, 0.5, 0.5)}, ">= 0"),
+        (QUAD_V, QUAD_F, {"reflectance": (0.5, np.nan, 0.5)}, "finite"),
+        (QUAD_V, QUAD_F, {"reflectance": (0.5, 0.5)}, "3 numbers"),
+        (QUAD_V, QUAD_F, {"emission": (1.0, -1.0, 1.0)}, ">= 0"),
+        (QUAD_V, QUAD_F, {"emission": (1.0, np.inf, 1.0)}, "finite"),
+        (QUAD_V * 1e31, QUAD_F, {}, "1e30"),
+    ],
+)
+def test_add_mesh_rejects_bad_input(vertices, faces, kwargs, message) -> None:
+    scene = dualight.Scene()
+    with pytest.raises(ValueError, match=message):
+        scene.add_mesh(vertices, faces, **kwargs)
+    assert scene.meshes == ()
+
+
+def test_zero_area_triangles_can_be_dropped_with_a_warning() -> None:
+    scene = dualight.Scene()
+    faces = np.array([[0, 1, 2], [0, 1, 1], [0, 2, 3]])
+    with pytest.warns(UserWarning, match="dropped 1 zero-area"):
+        scene.add_mesh(QUAD_V, faces, degenerate="drop")
+    assert scene.triangle_count == 2
+    with pytest.raises(ValueError, match="every triangle has zero area"), pytest.warns(UserWarning):
+        scene.add_mesh(QUAD_V, np.array([[0, 0, 1]]), degenerate="drop")
+
+
+def test_quads_are_split_and_areas_kept() -> None:
+    scene = dualight.Scene()
+    scene.add_mesh(QUAD_V * 2.0, QUAD_F)
+    mesh = scene.meshes[0]
+    assert mesh.triangles.tolist() == [[0, 1, 2], [0, 2, 3]]
+    np.testing.assert_allclose(mesh.areas, [2.0, 2.0])
+    assert not mesh.vertices.flags.writeable
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"origin": (0, 0, 0), "target": (0, 0, 0)}, "target equals its origin"),
+        ({"up": (0, 0, 1)}, "parallel"),
+        ({"up": (0, 0, 0)}, "parallel"),
+        ({"fov": 0}, "fov"),
+        ({"fov": 180}, "fov"),
+        ({"fov": float("nan")}, "fov"),
+        ({"resolution": (0, 10)}, "resolution"),
+        ({"resolution": (10.5, 10)}, "resolution"),
+        ({"resolution": (10,)}, "resolution"),
+        ({"origin": (np.nan, 0, 0)}, "finite"),
+    ],
+)
+def test_camera_rejects_bad_input(kwargs, message) -> None:
+    with pytest.raises(ValueError, match=message):
+        dualight.Camera(**kwargs)
+
+
+def test_render_rejects_unrenderable_scenes(quad) -> None:
+    cam = dualight.Camera(origin=(0.5, 0.5, 2), target=(0.5, 0.5, 0), resolution=(8, 8))
+    with pytest.raises(ValueError, match="empty"):
+        dualight.render(dualight.Scene(camera=cam), progress=False)
+    dark = dualight.Scene(camera=cam)
+    dark.add_mesh(*quad)
+    with pytest.raises(ValueError, match="no emitter"):
+        dualight.render(dark, progress=False)
+    no_camera = dualight.Scene()
+    no_camera.add_mesh(*quad, emission=(1, 1, 1))
+    with pytest.raises(ValueError, match="no camera"):
+        dualight.render(no_camera, progress=False)
+    dualight.render(no_camera, camera=cam, spp=1, progress=False)  # a camera argument suffices
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"method": "nope"}, "unknown method"),
+        ({"spp": 0}, "spp"),
+        ({"spp": 2.5}, "spp"),
+        ({"spp": None}, "spp, time_limit"),
+        ({"time_limit": -1.0}, "time_limit"),
+        ({"max_depth": -2}, "max_depth"),
+        ({"rr_depth": 0}, "rr_depth"),
+        ({"seed": -1}, "seed"),
+        ({"threads": 0}, "threads"),
+    ],
+)
+def test_render_rejects_bad_options(tiny_scene, kwargs, message) -> None:
+    with pytest.raises(ValueError, match=message):
+        dualight.render(tiny_scene, progress=False, **kwargs)
+
+
+def test_core_options_reject_misspelled_keywords() -> None:
+    with pytest.raises(TypeError):
+        _core.PathTracerOptions(sp=4)  # typo: an error, never a silent default
+
+
+def test_compiled_scene_is_cached_and_rebuilt_on_change(tiny_scene) -> None:
+    first = tiny_scene._compile()
+    assert tiny_scene._compile() is first
+    tiny_scene.add_mesh(QUAD_V + [0, 0, -1], QUAD_F)
+    assert tiny_scene._compile() is not first
+    assert tiny_scene._compile().triangle_count == 4
+
+
+def test_ray_triangle_conventions(tiny_scene) -> None:
+    """Hits from both sides of a triangle, the hit distance, misses past edges and behind."""
+    core = tiny_scene._compile()
+    origins = np.array(
+        [[0.25, 0.5, 2.0], [0.25, 0.5, -3.0], [1.5, 0.5, 2.0], [0.5, 0.5, 2.0], [0.6, 0.3, 1.0]]
+    )
+    directions = np.array([[0, 0, -1], [0, 0, 2], [0, 0, -1], [0, 0, 1], [0, 0, -0.5]])
+    t, prim = core.intersect(origins, directions)
+    np.testing.assert_allclose(t[[0, 1, 4]], [2.0, 1.5, 2.0], rtol=1e-6)
+    assert prim[0] >= 0 and prim[1] >= 0 and prim[4] >= 0
+    assert prim[2] == -1 and prim[3] == -1 and np.isinf(t[2]) and np.isinf(t[3])
+
+
+def test_camera_rays_follow_mitsuba_conventions() -> None:
+    """Row 0 is the top, x grows to the right, fov is the full angle along x."""
+    cam = dualight.Camera(
+        origin=(0, 0, 0), target=(0, 0, 1), up=(0, 1, 0), fov=90.0, resolution=(200, 100)
+    )._compile()
+    _, centre = cam.generate_ray(100.0, 50.0)
+    np.testing.assert_allclose(centre, [0, 0, 1], atol=1e-6)
+    _, right_edge = cam.generate_ray(200.0, 50.0)
+    # Looking down +z with +y up, the right-hand side of the image is -x.
+    np.testing.assert_allclose(right_edge, np.array([-1, 0, 1]) / np.sqrt(2), atol=1e-6)
+    _, top_edge = cam.generate_ray(100.0, 0.0)
+    np.testing.assert_allclose(top_edge, np.array([0, 0.5, 1]) / np.sqrt(1.25), atol=1e-6)
