@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-import dualight
 import numpy as np
 import pytest
+
+import dualight
 
 
 @pytest.fixture

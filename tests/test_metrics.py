@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from dualight import metrics
 
 SHAPE = (64, 64, 3)

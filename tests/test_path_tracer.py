@@ -7,9 +7,10 @@ import signal
 import threading
 import time
 
-import dualight
 import numpy as np
 import pytest
+
+import dualight
 from dualight import metrics, scenes
 
 

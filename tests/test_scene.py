@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-import dualight
 import numpy as np
 import pytest
+
+import dualight
 from dualight import _core
 
 QUAD_V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float64)

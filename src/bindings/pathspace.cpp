@@ -5,6 +5,7 @@
 #include "bindings/interruptible.h"
 #include "bindings/numpy_util.h"
 #include "pathspace/path_tracer.h"
+#include "core/sampler.h"
 #include "pathspace/ray_benchmark.h"
 
 namespace dualight::bindings {
@@ -40,17 +41,24 @@ py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
 }  // namespace
 
 void bind_pathspace(py::module_& m) {
+  py::enum_<SamplerType>(m, "SamplerType")
+      .value("independent", SamplerType::Independent)
+      .value("sobol", SamplerType::Sobol);
+
   py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
-      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit) {
+      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
+                       SamplerType sampler) {
              if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
              if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
              if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
              if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
              if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
-             return PathTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit};
+             return PathTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit, sampler};
            }),
            py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0)
+           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
+           py::arg("sampler") = SamplerType::Independent)
+      .def_readonly("sampler", &PathTracerOptions::sampler)
       .def_readonly("spp", &PathTracerOptions::spp)
       .def_readonly("max_depth", &PathTracerOptions::max_depth)
       .def_readonly("rr_depth", &PathTracerOptions::rr_depth)
@@ -71,6 +79,25 @@ void bind_pathspace(py::module_& m) {
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). "
       "progress(done, total) is called about every 100 ms.");
+
+  m.def(
+      "sampler_points",
+      [](SamplerType type, uint64_t seed, uint64_t pixel, uint32_t count, uint32_t dimensions_2d) {
+        std::vector<float> out;
+        out.reserve(static_cast<size_t>(count) * dimensions_2d * 2);
+        for (uint32_t i = 0; i < count; ++i) {
+          IndependentSampler independent(seed, pixel, i);
+          SobolSampler sobol(seed, pixel, i);
+          for (uint32_t d = 0; d < dimensions_2d; ++d) {
+            const Point2 p = type == SamplerType::Sobol ? sobol.next_2d() : independent.next_2d();
+            out.push_back(p.u);
+            out.push_back(p.v);
+          }
+        }
+        return to_numpy(std::move(out), {static_cast<py::ssize_t>(count), dimensions_2d, 2});
+      },
+      py::arg("sampler"), py::arg("seed"), py::arg("pixel"), py::arg("count"), py::arg("dimensions_2d"),
+      "The 2D samples a sampler gives one pixel: count x dimensions_2d x 2 (for tests and plots).");
 
   m.def(
       "cast_random_rays",

@@ -9,7 +9,8 @@ namespace dualight {
 namespace {
 
 // One camera path; returns its radiance estimate.
-Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Pcg32& rng,
+template <class Sampler>
+Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Sampler& sampler,
                  uint64_t& rays) {
   const bool has_emitters = scene.emitter_count() > 0;
   const auto depth_allows = [&](int segments) { return opt.max_depth < 0 || segments <= opt.max_depth; };
@@ -44,8 +45,8 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     const Bsdf& bsdf = hit.material->bsdf;
 
     if (has_emitters) {
-      const float u_select = rng.next_float();
-      const Point2 u_light{rng.next_float(), rng.next_float()};
+      const float u_select = sampler.next_1d();
+      const Point2 u_light = sampler.next_2d();
       const EmitterSample es = scene.sample_emitter(u_select, u_light);
       const Vec3 to_light = es.p - hit.p;
       const float dist2 = dot(to_light, to_light);
@@ -67,7 +68,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     }
 
     BsdfSample bs;
-    if (!sample(bsdf, wo, Point2{rng.next_float(), rng.next_float()}, TransportMode::Radiance, bs)) break;
+    if (!sample(bsdf, wo, sampler.next_2d(), TransportMode::Radiance, bs)) break;
     beta *= bs.weight;
     prev_pdf_w = bs.pdf_w;
     const Vec3 wi_world = frame.to_world(bs.wi);
@@ -75,7 +76,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
 
     if (depth >= opt.rr_depth) {
       const float q = std::min(max_component(beta), 0.95f);
-      if (!(rng.next_float() < q)) break;
+      if (!(sampler.next_1d() < q)) break;
       beta /= q;
     }
   }
@@ -88,10 +89,17 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
                          RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit};
-  result.stats = drive_pixels(result.film, driver, control,
-                              [&](float x, float y, Pcg32& rng, uint64_t& rays) {
-                                return trace_path(scene, camera.generate_ray(x, y), options, rng, rays);
-                              });
+  const auto estimate = [&](float x, float y, auto& sampler, uint64_t& rays) {
+    return trace_path(scene, camera.generate_ray(x, y), options, sampler, rays);
+  };
+  switch (options.sampler) {
+    case SamplerType::Independent:
+      result.stats = drive_pixels<IndependentSampler>(result.film, driver, control, estimate);
+      break;
+    case SamplerType::Sobol:
+      result.stats = drive_pixels<SobolSampler>(result.film, driver, control, estimate);
+      break;
+  }
   return result;
 }
 

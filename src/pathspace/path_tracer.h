@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/render_control.h"
+#include "core/sampler.h"
 #include "film/film.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
@@ -20,6 +21,7 @@ struct PathTracerOptions {
   uint64_t seed = 0;
   int threads = 0;            // 0 = all cores
   double time_limit = 0.0;    // seconds; 0 = none
+  SamplerType sampler = SamplerType::Independent;
 };
 
 struct RenderResult {

@@ -9,7 +9,7 @@
 
 #include "core/parallel.h"
 #include "core/render_control.h"
-#include "core/rng.h"
+#include "core/sampler.h"
 #include "film/film.h"
 #include "pathspace/render_stats.h"
 
@@ -22,9 +22,9 @@ struct PixelDriverOptions {
   double time_limit = 0.0;
 };
 
-// estimate(x, y, rng, rays) returns the sample value for film position (x, y) in pixels and adds
-// the rays it traced to `rays`.
-template <class Estimate>
+// estimate(x, y, sampler, rays) returns the sample value for film position (x, y) in pixels and
+// adds the rays it traced to `rays`. The film position uses the sampler's first 2D sample.
+template <class Sampler, class Estimate>
 RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderControl& control,
                          const Estimate& estimate) {
   using Clock = std::chrono::steady_clock;
@@ -59,10 +59,10 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
           if (control.cancelled()) break;
           const size_t pixel = static_cast<size_t>(y) * w + x;
           for (uint32_t s = first; s < first + count; ++s) {
-            Pcg32 rng(hash_combine(opt.seed, pixel), s);
-            const float fx = static_cast<float>(x) + rng.next_float();
-            const float fy = static_cast<float>(y) + rng.next_float();
-            Color value = estimate(fx, fy, rng, local_rays);
+            Sampler sampler(opt.seed, pixel, s);
+            const Point2 jitter = sampler.next_2d();
+            Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler,
+                                   local_rays);
             if (!is_finite(value)) {
               value = Color(0.f);
               ++local_invalid;

@@ -1,0 +1,71 @@
+"""Samplers: uniformity, stratification of the Owen-scrambled Sobol sampler, determinism."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import dualight
+from dualight import _core, scenes
+
+SOBOL = _core.SamplerType.sobol
+INDEPENDENT = _core.SamplerType.independent
+
+
+def _strata_filled(points: np.ndarray, log2_n: int) -> bool:
+    """True when every elementary interval of area 1/n holds exactly one point."""
+    n = 1 << log2_n
+    for a in range(log2_n + 1):
+        cells = np.floor(points * [2**a, 2 ** (log2_n - a)]).astype(np.int64)
+        if len({(int(x), int(y)) for x, y in cells}) != n:
+            return False
+    return True
+
+
+@pytest.mark.parametrize("log2_n", [4, 8, 10])
+def test_sobol_pairs_are_0m2_nets_in_every_dimension(log2_n: int) -> None:
+    points = _core.sampler_points(SOBOL, 3, 12345, 1 << log2_n, 6)
+    assert all(_strata_filled(points[:, d], log2_n) for d in range(6))
+    # ... which independent samples almost never are.
+    random = _core.sampler_points(INDEPENDENT, 3, 12345, 1 << log2_n, 6)
+    assert not any(_strata_filled(random[:, d], log2_n) for d in range(6))
+
+
+@pytest.mark.parametrize("sampler", [SOBOL, INDEPENDENT])
+def test_samples_are_uniform_and_dimensions_uncorrelated(sampler) -> None:
+    n = 4096
+    points = _core.sampler_points(sampler, 0, 7, n, 4).reshape(n, 8).astype(np.float64)
+    assert np.all((points >= 0.0) & (points < 1.0))
+    # Means and variances of U(0, 1) within a few standard errors.
+    assert np.all(np.abs(points.mean(axis=0) - 0.5) < 5 * np.sqrt(1 / 12 / n))
+    assert np.all(np.abs(points.var(axis=0) - 1 / 12) < 0.01)
+    corr = np.corrcoef(points.T)[np.triu_indices(8, 1)]
+    assert np.max(np.abs(corr)) < 5 / np.sqrt(n)
+
+
+def test_sobol_scrambles_differ_between_pixels_and_seeds() -> None:
+    a = _core.sampler_points(SOBOL, 0, 1, 64, 2)
+    assert not np.array_equal(a, _core.sampler_points(SOBOL, 0, 2, 64, 2))
+    assert not np.array_equal(a, _core.sampler_points(SOBOL, 1, 1, 64, 2))
+    assert np.array_equal(a, _core.sampler_points(SOBOL, 0, 1, 64, 2))
+
+
+def test_sobol_render_is_unbiased_and_less_noisy() -> None:
+    """Over independent scrambles (seeds) the mean matches the analytic furnace value."""
+    scene = scenes.furnace(0.5, 1.0, resolution=(16, 16))
+    expected = scenes.furnace_radiance(0.5, 1.0)
+    means = {}
+    errors = {}
+    for name in ("sobol", "independent"):
+        imgs = np.stack(
+            [
+                np.asarray(dualight.render(scene, spp=64, seed=s, sampler=name, progress=False))
+                for s in range(8)
+            ]
+        )
+        means[name] = imgs.mean()
+        errors[name] = np.mean((imgs - expected) ** 2)
+        # Standard error of the grand mean from the spread of per-seed image means.
+        per_seed = imgs.mean(axis=(1, 2, 3))
+        assert abs(per_seed.mean() - expected) < 4 * per_seed.std(ddof=1) / np.sqrt(8) + 1e-6
+    assert errors["sobol"] < errors["independent"]
