@@ -3,7 +3,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
-.PHONY: setup install demo test test-fast lint bench clean
+.PHONY: setup install demo test test-fast cpp-test bench clean
 
 setup: $(VENV)/.setup-done
 $(VENV)/.setup-done: scripts/setup.sh
@@ -19,9 +19,16 @@ $(VENV)/.installed: $(VENV)/.setup-done $(SOURCES)
 demo: install
 	$(PY) -m dualight demo --out out
 
-test: install
+# pytest runs last: its summary is the closing line CI reads.
+test: install cpp-test
 	$(VENV)/bin/ruff check python tests benchmarks
 	$(PY) -m pytest -q
+
+# C++ unit tests (tests/cpp) through ctest, in their own incremental build folder.
+cpp-test: setup
+	cmake -S . -B build/cpp-tests -DDUALIGHT_PYTHON=OFF -DBUILD_TESTING=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+	cmake --build build/cpp-tests -j 2
+	ctest --test-dir build/cpp-tests --output-on-failure
 
 test-fast: install
 	$(PY) -m pytest -q -m "not slow and not mitsuba"

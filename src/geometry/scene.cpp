@@ -65,11 +65,6 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 
-Vec3 Scene::vertex(uint32_t prim, int corner) const {
-  const uint32_t v = triangles_[3 * prim + corner];
-  return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
-}
-
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   const RayHit rh = accel_->intersect(ray);
   if (!rh.hit()) return false;

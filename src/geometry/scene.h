@@ -59,7 +59,10 @@ class Scene {
   }
 
  private:
-  Vec3 vertex(uint32_t prim, int corner) const;
+  Vec3 vertex(uint32_t prim, int corner) const {
+    const uint32_t v = triangles_[3 * prim + corner];
+    return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
+  }
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;

@@ -1,0 +1,79 @@
+// Ray-triangle conventions of the Embree wrapper and the scene, and the ray offset.
+#include <cmath>
+
+#include "check.h"
+#include "core/ray.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+
+using namespace dualight;
+
+namespace {
+Scene unit_triangle_scene(Color emission) {
+  return Scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {0}, {Material{Lambertian{Color(0.5f)}, emission}});
+}
+}  // namespace
+
+TEST_CASE(hits_from_both_sides_with_right_hand_normal) {
+  const Scene scene = unit_triangle_scene(Color(1.f));
+  SurfaceHit hit;
+  CHECK(scene.intersect(Ray{{0.2f, 0.3f, 2.f}, {0, 0, -1}}, hit));
+  CHECK_NEAR(hit.t, 2.f, 1e-6f);
+  CHECK_NEAR(hit.p.x, 0.2f, 1e-6f);
+  CHECK_NEAR(hit.p.y, 0.3f, 1e-6f);
+  CHECK(hit.n.z > 0.99f);  // (v1 - v0) x (v2 - v0) = +z
+  CHECK(!is_black(Scene::emitted(hit, Vec3(0, 0, 1))));  // front side emits
+  CHECK(is_black(Scene::emitted(hit, Vec3(0, 0, -1))));  // back side does not
+  CHECK(scene.intersect(Ray{{0.2f, 0.3f, -1.f}, {0, 0, 1}}, hit));
+  CHECK(!scene.intersect(Ray{{0.6f, 0.6f, 1.f}, {0, 0, -1}}, hit));  // past the hypotenuse
+  CHECK(!scene.intersect(Ray{{0.2f, 0.3f, 1.f}, {0, 0, 1}}, hit));   // behind the origin
+  CHECK(!scene.intersect(Ray{{0.2f, 0.3f, 1.f}, {0, 0, -1}, 0.5f}, hit));  // beyond tmax
+}
+
+TEST_CASE(emitter_sampling_density_is_one_over_area) {
+  const Scene scene = unit_triangle_scene(Color(2.f));
+  const EmitterSample s = scene.sample_emitter(0.5f, {0.3f, 0.6f});
+  CHECK_NEAR(s.pdf_a, 2.f, 1e-5f);  // area 1/2
+  CHECK_NEAR(scene.emitter_pdf_a(0), 2.f, 1e-5f);
+  CHECK(s.p.x >= 0.f && s.p.y >= 0.f && s.p.x + s.p.y <= 1.f + 1e-6f && s.p.z == 0.f);
+}
+
+TEST_CASE(scene_rejects_malformed_input) {
+  auto throws = [](auto make) {
+    try {
+      make();
+    } catch (const std::invalid_argument&) {
+      return true;
+    }
+    return false;
+  };
+  const Material m{Lambertian{Color(0.5f)}, Color(0.f)};
+  CHECK(throws([&] { Scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 3}, {0}, {m}); }));            // index
+  CHECK(throws([&] { Scene({0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 1, 2}, {0}, {m}); }));            // zero area
+  CHECK(throws([&] { Scene({0, 0, NAN, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {0}, {m}); }));          // NaN
+  CHECK(throws([&] { Scene({}, {}, {}, {m}); }));                                             // empty
+  CHECK(throws([&] { Scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {1}, {m}); }));            // material
+}
+
+TEST_CASE(offset_origin_leaves_the_surface_at_any_scale) {
+  for (const float scale : {1e-5f, 1.f, 1e5f}) {
+    const Scene scene({0, 0, 0, scale, 0, 0, 0, scale, 0}, {0, 1, 2}, {0},
+                      {Material{Lambertian{Color(0.5f)}, Color(0.f)}});
+    const Vec3 p(0.25f * scale, 0.25f * scale, 0.f);
+    const Vec3 o = offset_ray_origin(p, Vec3(0, 0, 1));
+    CHECK(o.z > 0.f);
+    CHECK(o.z < 1e-3f * scale + 1e-4f);
+    SurfaceHit hit;
+    // A grazing ray leaving the surface must not hit it again.
+    CHECK(!scene.intersect(Ray{o, normalize(Vec3(1.f, 0.f, 1e-3f))}, hit));
+  }
+}
+
+TEST_CASE(camera_looks_along_forward_with_row_zero_on_top) {
+  const PinholeCamera cam(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90.f, 100, 50);
+  const Ray centre = cam.generate_ray(50.f, 25.f);
+  CHECK_NEAR(centre.d.z, 1.f, 1e-6f);
+  CHECK(cam.generate_ray(50.f, 0.f).d.y > 0.f);    // top row looks up
+  CHECK(cam.generate_ray(100.f, 25.f).d.x < 0.f);  // right edge is -x (right = forward x up)
+  CHECK_NEAR(cam.generate_ray(100.f, 25.f).d.x, -std::sqrt(0.5f), 1e-6f);
+}

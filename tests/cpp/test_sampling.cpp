@@ -1,0 +1,104 @@
+// Sampling warps against their densities, the discrete distribution, frames and PCG32.
+#include <cmath>
+#include <vector>
+
+#include "check.h"
+#include "core/distribution.h"
+#include "core/frame.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+
+using namespace dualight;
+
+TEST_CASE(cosine_hemisphere_moments_match_its_pdf) {
+  // E[cos] = 2/3 and E[cos^2] = 1/2 under p = cos/pi; all samples on the upper hemisphere.
+  Pcg32 rng(1, 2);
+  const int n = 200000;
+  double m1 = 0, m2 = 0, x_mean = 0;
+  bool unit = true;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = square_to_cosine_hemisphere({rng.next_float(), rng.next_float()});
+    unit &= std::abs(length(w) - 1.f) < 1e-5f && w.z >= 0.f;
+    m1 += w.z;
+    m2 += w.z * w.z;
+    x_mean += w.x;
+  }
+  CHECK(unit);
+  CHECK_NEAR(m1 / n, 2.0 / 3.0, 4e-3);
+  CHECK_NEAR(m2 / n, 0.5, 4e-3);
+  CHECK_NEAR(x_mean / n, 0.0, 5e-3);
+  CHECK_NEAR(cosine_hemisphere_pdf(1.f), kInvPi, 1e-7);
+  CHECK(cosine_hemisphere_pdf(-0.1f) == 0.f);
+}
+
+TEST_CASE(uniform_triangle_barycentrics_are_uniform) {
+  // The mean of uniform barycentrics is the centroid (1/3, 1/3); all inside the triangle.
+  Pcg32 rng(3, 4);
+  const int n = 200000;
+  double b1 = 0, b2 = 0;
+  bool inside = true;
+  for (int i = 0; i < n; ++i) {
+    const Point2 b = square_to_uniform_triangle({rng.next_float(), rng.next_float()});
+    inside &= b.u >= 0.f && b.v >= 0.f && b.u + b.v <= 1.f + 1e-6f;
+    b1 += b.u;
+    b2 += b.v;
+  }
+  CHECK(inside);
+  CHECK_NEAR(b1 / n, 1.0 / 3.0, 3e-3);
+  CHECK_NEAR(b2 / n, 1.0 / 3.0, 3e-3);
+}
+
+TEST_CASE(power_heuristic_weights_sum_to_one) {
+  CHECK_NEAR(power_heuristic(1.f, 3.f) + power_heuristic(3.f, 1.f), 1.f, 1e-6f);
+  CHECK(power_heuristic(0.f, 1.f) == 0.f);
+  CHECK(power_heuristic(1.f, 0.f) == 1.f);
+}
+
+TEST_CASE(discrete_distribution_samples_in_proportion) {
+  const DiscreteDistribution d({1.0, 0.0, 3.0});
+  CHECK_NEAR(d.pmf(0), 0.25f, 1e-7f);
+  CHECK(d.pmf(1) == 0.f);
+  std::vector<int> counts(3, 0);
+  Pcg32 rng(5, 6);
+  for (int i = 0; i < 100000; ++i) {
+    float u = rng.next_float();
+    const size_t k = d.sample(u);
+    CHECK(u >= 0.f && u < 1.f);
+    ++counts[k];
+  }
+  CHECK(counts[1] == 0);
+  CHECK_NEAR(counts[0] / 100000.0, 0.25, 6e-3);
+  bool threw = false;
+  try {
+    DiscreteDistribution({0.0, 0.0});
+  } catch (const std::invalid_argument&) {
+    threw = true;
+  }
+  CHECK(threw);
+}
+
+TEST_CASE(frames_are_orthonormal_for_any_normal) {
+  Pcg32 rng(7, 8);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 n = normalize(Vec3(rng.next_float() - .5f, rng.next_float() - .5f, rng.next_float() - .5f));
+    const Frame f = Frame::from_normal(n);
+    CHECK_NEAR(dot(f.s, f.t), 0.f, 1e-5f);
+    CHECK_NEAR(dot(f.s, f.n), 0.f, 1e-5f);
+    CHECK_NEAR(length(f.s), 1.f, 1e-5f);
+    CHECK(length(f.to_world(f.to_local(Vec3(1, 2, 3))) - Vec3(1, 2, 3)) < 1e-4f);
+  }
+  const Frame down = Frame::from_normal(Vec3(0, 0, -1));  // the branch at n.z < 0
+  CHECK_NEAR(dot(down.s, down.t), 0.f, 1e-6f);
+}
+
+TEST_CASE(pcg32_floats_stay_below_one_and_streams_differ) {
+  Pcg32 a(1, 1), b(1, 2);
+  bool below = true, differ = false;
+  for (int i = 0; i < 100000; ++i) {
+    const float x = a.next_float();
+    below &= x >= 0.f && x < 1.f;
+    differ |= x != b.next_float();
+  }
+  CHECK(below);
+  CHECK(differ);
+}
