@@ -1,0 +1,147 @@
+"""Render the Mitsuba 3 reference images that the tests compare against.
+
+Usage (from the repository root, with Mitsuba installed)::
+
+    .venv/bin/python tests/references/make_references.py            # every reference
+    .venv/bin/python tests/references/make_references.py cornell_64  # just one
+
+Each reference ``NAME`` is stored as two float32 EXR files written by ``dualight.Image``:
+``NAME_mean.exr`` (mean radiance) and ``NAME_var.exr`` (per-pixel variance *of that mean*), both
+carrying the render settings as metadata (``scene``, ``spp``, ``seed``, ``variant``,
+``max_depth``, ``rr_depth``, ``mitsuba``, ``seconds``, ``quantity``).
+
+The references (see README.md beside this file for how long they took):
+
+* ``cornell_64``: ``cornell_box(resolution=(64, 64))``, ``max_depth=8`` (bounded, so every
+  renderer stops at the same path length), ``rr_depth=5`` (Mitsuba's default: Russian roulette
+  keeps the mean, which is all the Welch test compares; the variances are each renderer's own).
+* ``furnace_64``: ``furnace(0.5, 1.0, (64, 64))``, ``max_depth=16``, ``rr_depth=5``. With paths
+  of at most ``k`` segments its radiance is ``sum_{i<k} rho^i Le = Le (1 - rho^k) / (1 - rho)``
+  everywhere, here ``2 (1 - 2^-16)``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+
+
+@dataclass(frozen=True)
+class Reference:
+    """How one reference is rendered."""
+
+    name: str
+    scene: str  # a Python expression in dualight.scenes, recorded in the metadata
+    build: Callable[[], object]
+    spp: int
+    max_depth: int
+    rr_depth: int = 5
+    seed: int = 0
+
+
+def _references() -> dict[str, Reference]:
+    from dualight import scenes
+
+    refs = [
+        Reference(
+            "cornell_64",
+            "cornell_box(resolution=(64, 64))",
+            lambda: scenes.cornell_box(resolution=(64, 64)),
+            spp=262144,
+            max_depth=8,
+        ),
+        Reference(
+            "furnace_64",
+            "furnace(0.5, 1.0, (64, 64))",
+            lambda: scenes.furnace(0.5, 1.0, (64, 64)),
+            spp=16384,
+            max_depth=16,
+        ),
+    ]
+    return {r.name: r for r in refs}
+
+
+def load(name: str, directory: Path = HERE) -> tuple[np.ndarray, np.ndarray, dict[str, object]]:
+    """The stored mean, variance of the mean and metadata of reference ``name``."""
+    import dualight
+
+    mean = dualight.Image.load(directory / f"{name}_mean.exr")
+    var = dualight.Image.load(directory / f"{name}_var.exr")
+    return np.asarray(mean), np.asarray(var), dict(mean.stats)
+
+
+def make(ref: Reference, directory: Path = HERE, variant: str | None = None) -> float:
+    """Render and store ``ref``; return the render time in seconds."""
+    import mitsuba as mi
+
+    import dualight
+    from dualight import mitsuba as dm
+
+    chosen = dm.variant(variant) if variant else dm.variant()
+    scene = ref.build()
+    start = time.perf_counter()
+    mean, var = dm.reference(
+        scene, ref.spp, ref.seed, max_depth=ref.max_depth, rr_depth=ref.rr_depth, variant=chosen
+    )
+    seconds = time.perf_counter() - start
+    stats: dict[str, object] = {
+        "scene": ref.scene,
+        "spp": ref.spp,
+        "seed": ref.seed,
+        "variant": chosen,
+        "max_depth": ref.max_depth,
+        "rr_depth": ref.rr_depth,
+        "integrator": "path (dualight.mitsuba.reference)",
+        "mitsuba": mi.__version__,
+        "seconds": round(seconds, 1),
+    }
+    dualight.Image(mean, stats={**stats, "quantity": "mean"}).save(
+        directory / f"{ref.name}_mean.exr"
+    )
+    dualight.Image(var, stats={**stats, "quantity": "variance of the mean"}).save(
+        directory / f"{ref.name}_var.exr"
+    )
+    return seconds
+
+
+def main(argv: list[str] | None = None) -> int:
+    refs = _references()
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "names", nargs="*", help=f"references to render (default: all of {list(refs)})"
+    )
+    parser.add_argument("--variant", help="Mitsuba variant (default: dualight.mitsuba.variant())")
+    parser.add_argument("--out", type=Path, default=HERE, help="output directory")
+    args = parser.parse_args(argv)
+    unknown = [n for n in args.names if n not in refs]
+    if unknown:
+        parser.error(f"unknown reference(s) {unknown}; choose from {list(refs)}")
+    for name in args.names or list(refs):
+        ref = refs[name]
+        print(
+            f"{name}: {ref.scene}, spp={ref.spp}, max_depth={ref.max_depth}, "
+            f"rr_depth={ref.rr_depth}, seed={ref.seed} ...",
+            flush=True,
+        )
+        seconds = make(ref, args.out, args.variant)
+        mean, var, stats = load(name, args.out)
+        rel = np.sqrt(var.mean(axis=(0, 1))) / np.maximum(mean.mean(axis=(0, 1)), 1e-12)
+        print(
+            f"  {seconds:.1f} s with {stats['variant']}; mean RGB "
+            f"{np.round(mean.mean(axis=(0, 1)), 5).tolist()}, "
+            f"rms relative std of a pixel mean {np.round(rel, 5).tolist()}",
+            flush=True,
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
