@@ -28,8 +28,11 @@ def _against_constant(image: dualight.Image, value: float, block: int) -> metric
 
 @pytest.mark.parametrize(("rho", "max_depth"), [(0.5, -1), (0.8, -1), (0.5, 2), (0.9, 4)])
 def test_furnace_matches_analytic_radiance(rho: float, max_depth: int) -> None:
+    # 1024 spp: per-pixel values are right-skewed (Russian roulette), and at a few hundred spp
+    # the pixels that missed the rare large samples underestimate their own variance, which
+    # the normal approximation behind the Welch test does not allow for.
     scene = scenes.furnace(rho, 1.0, resolution=(32, 32))
-    image = dualight.render(scene, spp=256, max_depth=max_depth, seed=1, progress=False)
+    image = dualight.render(scene, spp=1024, max_depth=max_depth, seed=1, progress=False)
     expected = _truncated_furnace(rho, 1.0, max_depth)
     pixel = _against_constant(image, expected, block=1)
     blocks = _against_constant(image, expected, block=8)
@@ -39,7 +42,7 @@ def test_furnace_matches_analytic_radiance(rho: float, max_depth: int) -> None:
     # Negative control: 3% less reflectance must fail the same block test.
     wrong = dualight.render(
         scenes.furnace(rho * 0.97, 1.0, resolution=(32, 32)),
-        spp=256,
+        spp=1024,
         max_depth=max_depth,
         seed=1,
         progress=False,
