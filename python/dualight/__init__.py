@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import metrics, scenes
+from dualight import metrics, radiosity, scenes
 from dualight.image import Image
 from dualight.render import METHODS, render
 from dualight.scene import Camera, Mesh, Scene
@@ -30,6 +30,7 @@ __all__ = [
     "Scene",
     "__version__",
     "metrics",
+    "radiosity",
     "render",
     "scenes",
 ]

@@ -7,6 +7,7 @@ namespace dualight::bindings {
 void bind_geometry(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
+void bind_radiosity(py::module_& m);
 }  // namespace dualight::bindings
 
 PYBIND11_MODULE(_core, m) {
@@ -14,4 +15,5 @@ PYBIND11_MODULE(_core, m) {
   dualight::bindings::bind_geometry(m);
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
+  dualight::bindings::bind_radiosity(m);
 }

@@ -41,6 +41,13 @@ class Scene {
         std::vector<Material> materials);
 
   size_t triangle_count() const { return area_.size(); }
+  Vec3 vertex(uint32_t prim, int corner) const {
+    const uint32_t v = triangles_[3 * prim + corner];
+    return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
+  }
+  Vec3 normal(uint32_t prim) const { return normal_[prim]; }
+  float area(uint32_t prim) const { return area_[prim]; }
+  const Material& material(uint32_t prim) const { return materials_[material_of_[prim]]; }
   size_t emitter_count() const { return emissive_.size(); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
@@ -59,10 +66,6 @@ class Scene {
   }
 
  private:
-  Vec3 vertex(uint32_t prim, int corner) const {
-    const uint32_t v = triangles_[3 * prim + corner];
-    return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
-  }
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;

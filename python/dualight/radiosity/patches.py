@@ -1,0 +1,143 @@
+"""Patches: every input triangle (quads arrive split in two) subdivided into a regular grid of
+``n x n`` smaller triangles, with ``n`` chosen from ``max_edge`` or ``max_area``.
+
+Patches are one-sided, as in classical radiosity: each sends and receives light on the side of
+its normal (the right-hand rule on the input triangle's vertex order, as everywhere in
+dualight). Two-sided surfaces need a mesh per side.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dualight.scene import Scene
+
+if TYPE_CHECKING:
+    from dualight import _core
+
+
+def _grid(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Barycentrics (b1, b2) of the grid vertices and the sub-triangles, for n divisions."""
+    ij = [(i, j) for i in range(n + 1) for j in range(n + 1 - i)]
+    index = {p: k for k, p in enumerate(ij)}
+    bary = np.array(ij, dtype=np.float64) / n
+    tris = []
+    for i in range(n):
+        for j in range(n - i):
+            tris.append((index[(i, j)], index[(i + 1, j)], index[(i, j + 1)]))
+            if i + j <= n - 2:
+                tris.append((index[(i + 1, j)], index[(i + 1, j + 1)], index[(i, j + 1)]))
+    return bary, np.array(tris, dtype=np.int64)
+
+
+class PatchMesh:
+    """The scene's triangles subdivided into patches.
+
+    Parameters
+    ----------
+    scene:
+        A :class:`dualight.Scene`.
+    max_edge:
+        Longest allowed patch edge (scene units).
+    max_area:
+        Largest allowed patch area; used when ``max_edge`` is not given.
+
+    Attributes
+    ----------
+    vertices, triangles:
+        ``(P, 3)`` positions and ``(N, 3)`` vertex indices of the N patches (vertices are shared
+        within each input triangle).
+    areas, normals, centroids:
+        Per patch, ``(N,)``, ``(N, 3)``, ``(N, 3)``.
+    reflectance, emission:
+        Per patch RGB, ``(N, 3)``: the mesh's diffuse albedo and emitted radiosity
+        ``E = pi * Le`` (W m^-2).
+    mesh_index:
+        ``(N,)`` which mesh of the scene each patch comes from.
+    """
+
+    def __init__(
+        self, scene: Scene, *, max_edge: float | None = None, max_area: float | None = None
+    ) -> None:
+        if not isinstance(scene, Scene):
+            raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+        if not scene.meshes:
+            raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+        if max_edge is None and max_area is None:
+            raise ValueError("give max_edge or max_area")
+        for name, value in (("max_edge", max_edge), ("max_area", max_area)):
+            if value is not None and not (math.isfinite(value) and value > 0):
+                raise ValueError(f"{name} must be a positive number, got {value!r}")
+        self.max_edge = max_edge
+        self.max_area = max_area
+        grids: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        vertices, triangles, mesh_index = [], [], []
+        offset = 0
+        for m, mesh in enumerate(scene.meshes):
+            corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
+            if max_edge is not None:
+                edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
+                divisions = np.ceil(edges / max_edge).astype(np.int64)
+            else:
+                divisions = np.ceil(np.sqrt(mesh.areas / max_area)).astype(np.int64)
+            divisions = np.maximum(divisions, 1)
+            if int((divisions.astype(np.float64) ** 2).sum()) + offset > 50_000_000:
+                raise ValueError("this subdivision would make more than 50 million patches")
+            for n in np.unique(divisions):
+                bary, sub = grids.setdefault(int(n), _grid(int(n)))
+                sel = np.nonzero(divisions == n)[0]
+                c = corners[sel]  # (S, 3, 3)
+                pts = (
+                    c[:, None, 0] * (1.0 - bary[:, 0] - bary[:, 1])[None, :, None]
+                    + c[:, None, 1] * bary[None, :, 0, None]
+                    + c[:, None, 2] * bary[None, :, 1, None]
+                )  # (S, G, 3)
+                vertices.append(pts.reshape(-1, 3))
+                base = offset + np.arange(len(sel))[:, None, None] * len(bary)
+                triangles.append((sub[None, :, :] + base).reshape(-1, 3))
+                mesh_index.append(np.full(len(sel) * len(sub), m, dtype=np.int64))
+                offset += len(sel) * len(bary)
+        self.vertices = np.concatenate(vertices)
+        self.triangles = np.concatenate(triangles)
+        self.mesh_index = np.concatenate(mesh_index)
+        v = self.vertices[self.triangles]
+        cross = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
+        self.areas = 0.5 * np.linalg.norm(cross, axis=1)
+        self.normals = cross / (2.0 * self.areas[:, None])
+        self.centroids = v.mean(axis=1)
+        rho = np.array([mesh.reflectance for mesh in scene.meshes], dtype=np.float64)
+        Le = np.array([mesh.emission for mesh in scene.meshes], dtype=np.float64)
+        self.reflectance = rho[self.mesh_index]
+        self.emission = np.pi * Le[self.mesh_index]
+        self._scene = scene
+        self._compiled: _core.Scene | None = None
+
+    def __len__(self) -> int:
+        return len(self.triangles)
+
+    @property
+    def scene(self) -> Scene:
+        return self._scene
+
+    def _compile(self) -> _core.Scene:
+        """The patches as an Embree scene: triangle k of it is patch k."""
+        if self._compiled is None:
+            from dualight import _core
+
+            n_mesh = len(self._scene.meshes)
+            rho = np.array([m.reflectance for m in self._scene.meshes], dtype=np.float32)
+            Le = np.array([m.emission for m in self._scene.meshes], dtype=np.float32)
+            self._compiled = _core.Scene(
+                self.vertices.astype(np.float32),
+                self.triangles.astype(np.uint32),
+                self.mesh_index.astype(np.uint32),
+                rho.reshape(n_mesh, 3),
+                Le.reshape(n_mesh, 3),
+            )
+        return self._compiled
+
+    def __repr__(self) -> str:
+        return f"PatchMesh({len(self)} patches, {len(self.vertices)} vertices)"

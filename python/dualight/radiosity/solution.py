@@ -1,0 +1,391 @@
+"""`solve` and its `Solution`: radiosity and importance of one patch mesh, their measurement
+from both sides, and the three pictures (radiosity, importance, superposition)."""
+
+from __future__ import annotations
+
+import time
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+from dualight import _core
+from dualight.image import Image
+from dualight.radiosity.patches import PatchMesh
+from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
+from dualight.scene import Camera, Scene
+
+Mode = Literal["radiosity", "importance", "superposition"]
+
+
+class ConvergenceWarning(RuntimeWarning):
+    """An iterative solver stopped at max_iter with its residual above tol."""
+
+
+def receiver(
+    patches: PatchMesh,
+    camera: Camera,
+    *,
+    window: tuple[int, int, int, int] | None = None,
+    samples_per_axis: int = 4,
+    seed: int = 0,
+) -> np.ndarray:
+    """The receiver ``R``: how much each patch counts in the camera's measurement.
+
+    The measurement is the mean pixel value of the image (or of the pixel ``window``
+    ``(x0, y0, x1, y1)``, half-open), each pixel a box-filtered average of radiance. A diffuse
+    patch seen from its front leaves radiance ``B / pi``, so ``R_i`` is the share of the
+    window's stratified camera samples that land on the front of patch ``i``, divided by pi,
+    and ``<R, B>`` is that mean pixel value. ``R_i > 0`` exactly for patches the camera sees.
+    """
+    prim, _ = _core.trace_camera_hits(
+        patches._compile(), camera._compile(), samples_per_axis=samples_per_axis, seed=seed
+    )
+    if window is not None:
+        x0, y0, x1, y1 = window
+        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
+            raise ValueError(f"window {window} is not inside the {camera.resolution} image")
+        prim = prim[y0:y1, x0:x1]
+    hits = prim.reshape(-1)
+    total = hits.size
+    hits = hits[hits >= 0]
+    front = (
+        np.einsum(
+            "ij,ij->i", patches.normals[hits], np.asarray(camera.origin) - patches.centroids[hits]
+        )
+        > 0
+    )
+    counts = np.bincount(hits[front], minlength=len(patches)).astype(np.float64)
+    return counts / (total * np.pi)
+
+
+@dataclass
+class Solution:
+    """Radiosity ``B`` and importance ``I`` of a patch mesh, with what produced them.
+
+    ``B`` solves ``M B = E`` and ``I`` solves ``M^T I = R`` (``M = I - diag(rho) F``), per RGB
+    channel. Both answer the same measurement, the mean pixel value of the camera's view:
+    ``measurement_primal = <R, B>`` and ``measurement_dual = <I, E>`` (per channel).
+    """
+
+    patches: PatchMesh
+    B: np.ndarray
+    I: np.ndarray | None  # noqa: E741 - the literature's name
+    E: np.ndarray
+    R: np.ndarray
+    form_factors: _core.FormFactors
+    camera: Camera
+    method: str
+    stats: dict[str, Any] = field(default_factory=dict)
+    history: dict[str, list[Step]] = field(default_factory=dict)
+
+    @property
+    def areas(self) -> np.ndarray:
+        return self.patches.areas
+
+    @property
+    def rho(self) -> np.ndarray:
+        return self.patches.reflectance
+
+    @property
+    def measurement_primal(self) -> np.ndarray:
+        """``<R, B>`` per channel: the camera's mean pixel value from the radiosity solution."""
+        return np.sum(self.R * self.B, axis=0)
+
+    @property
+    def measurement_dual(self) -> np.ndarray:
+        """``<I, E>`` per channel: the same measurement from the importance solution."""
+        if self.I is None:
+            raise ValueError("importance was not solved: call solve(..., importance=True)")
+        return np.sum(self.I * self.E, axis=0)
+
+    @property
+    def duality_gap(self) -> float:
+        """Largest relative difference between the two measurements over the channels."""
+        p, d = self.measurement_primal, self.measurement_dual
+        return float(np.max(np.abs(p - d) / np.maximum(np.abs(p), 1e-300)))
+
+    # pictures -------------------------------------------------------------------------
+    def vertex_values(self, values: np.ndarray) -> np.ndarray:
+        """Per-vertex values: the area-weighted mean of the patches around each vertex.
+
+        Vertices are merged across input triangles when they coincide and their patches share
+        a mesh and a plane, so radiosity is smooth across a quad's diagonal but not around
+        the corner between a wall and the floor.
+        """
+        p = self.patches
+        key_pos = np.round(p.vertices / max(np.ptp(p.vertices), 1e-30) * 2**20).astype(np.int64)
+        tri_normals = np.round(p.normals * 1024).astype(np.int64)
+        corners = p.triangles.reshape(-1)
+        owner = np.repeat(np.arange(len(p)), 3)
+        keys = np.concatenate(
+            [key_pos[corners], tri_normals[owner], p.mesh_index[owner, None]], axis=1
+        )
+        _, group = np.unique(keys, axis=0, return_inverse=True)
+        group = group.reshape(-1)
+        w = p.areas[owner]
+        sums = np.zeros((group.max() + 1, values.shape[1]))
+        np.add.at(sums, group, w[:, None] * values[owner])
+        weights = np.bincount(group, weights=w)
+        per_corner = sums[group] / weights[group, None]
+        return per_corner.reshape(len(p), 3, values.shape[1])
+
+    @staticmethod
+    def _normalised(values: np.ndarray, visible: np.ndarray) -> np.ndarray:
+        """Values / their 99th percentile over the visible pixels, clipped to [0, 1]."""
+        seen = values[visible.any(axis=-1)] if visible.ndim == values.ndim + 1 else values
+        scale = float(np.percentile(seen, 99)) if seen.size else 0.0
+        return np.clip(values / scale, 0.0, 1.0) if scale > 0 else np.zeros_like(values)
+
+    def render(
+        self,
+        camera: Camera | None = None,
+        mode: Mode = "radiosity",
+        *,
+        smooth: bool = True,
+        samples_per_axis: int = 3,
+        seed: int = 0,
+    ) -> Image:
+        """Draw the solution from ``camera`` (default: the solution's camera).
+
+        ``"radiosity"``: radiance ``B / pi`` (linear RGB, comparable with a path-traced image),
+        flat per patch or (``smooth``) interpolated from vertex values. ``"importance"``: the
+        importance in false colour (mean over channels, normalised, a black-red-yellow-white
+        ramp). ``"superposition"``: the radiosity picture in grey with the important parts
+        tinted yellow, in proportion to importance: where the work matters for the view.
+        """
+        cam = camera or self.camera
+        prim, bary = _core.trace_camera_hits(
+            self.patches._compile(), cam._compile(), samples_per_axis=samples_per_axis, seed=seed
+        )
+        hit = prim >= 0
+        idx = np.where(hit, prim, 0)
+        front = (
+            np.einsum(
+                "...j,...j->...",
+                self.patches.normals[idx],
+                np.asarray(cam.origin) - self.patches.centroids[idx],
+            )
+            > 0
+        )
+        visible = hit & front
+
+        def sample(values: np.ndarray) -> np.ndarray:
+            if smooth:
+                corners = self.vertex_values(values)[idx]  # H, W, S, 3, C
+                b1, b2 = bary[..., 0:1], bary[..., 1:2]
+                v = (
+                    (1 - b1 - b2) * corners[..., 0, :]
+                    + b1 * corners[..., 1, :]
+                    + b2 * corners[..., 2, :]
+                )
+            else:
+                v = values[idx]
+            return np.where(visible[..., None], v, 0.0).mean(axis=2)
+
+        if mode == "radiosity":
+            return Image(sample(self.B / np.pi), stats={"mode": mode, "method": self.method})
+        if self.I is None:
+            raise ValueError("importance was not solved: call solve(..., importance=True)")
+        # Importance per unit area (the adjoint of radiosity): independent of the meshing.
+        density = (self.I.mean(axis=1) / self.patches.areas)[:, None]
+        if mode == "importance":
+            t = self._normalised(sample(density)[..., 0], visible)
+            ramp = np.stack(
+                [np.clip(3 * t, 0, 1), np.clip(3 * t - 1, 0, 1), np.clip(3 * t - 2, 0, 1)], -1
+            )
+            return Image(ramp, stats={"mode": mode, "method": self.method})
+        if mode == "superposition":
+            radiance = sample(self.B / np.pi)
+            lum = radiance @ np.array([0.2126, 0.7152, 0.0722])
+            grey = self._normalised(lum, visible)[..., None]
+            # Reflected light times how much it matters for the view [Smits et al. 1992]
+            # (emission is left out: it would only mark the lights).
+            luminance_B = ((self.B - self.E) @ np.array([0.2126, 0.7152, 0.0722]))[:, None]
+            t = self._normalised(sample(luminance_B * density)[..., 0], visible)[..., None]
+            yellow = np.array([1.0, 0.85, 0.0])
+            out = (1 - t) * grey * 0.7 + t * yellow * (0.4 + 0.6 * grey)
+            return Image(out, stats={"mode": mode, "method": self.method})
+        raise ValueError(f"mode must be 'radiosity', 'importance' or 'superposition', got {mode!r}")
+
+
+def form_factors(
+    patches: PatchMesh,
+    *,
+    quadrature: int = 3,
+    shadow_rays: int = 4,
+    seed: int = 0,
+    threads: int = 0,
+    progress: Callable[[int, int], None] | None = None,
+) -> tuple[_core.FormFactors, dict[str, Any]]:
+    """Form factors of all patch pairs (sparse) and stats (pairs, rays, seconds, rays/s,
+    reciprocity and closure errors)."""
+    options = _core.FormFactorOptions(
+        quadrature=quadrature, shadow_rays=shadow_rays, seed=seed, threads=threads
+    )
+    F, stats = _core.compute_form_factors(patches._compile(), options, progress)
+    stats = dict(stats)
+    stats.update(quadrature=quadrature, shadow_rays=shadow_rays, nonzeros=int(F.nonzeros))
+    stats.update(form_factor_checks(F, patches.areas))
+    return F, stats
+
+
+def form_factor_checks(F: _core.FormFactors, areas: np.ndarray) -> dict[str, float]:
+    """Reciprocity ``A_i F_ij = A_j F_ji`` and closure ``sum_j F_ij`` summaries."""
+    n = F.n
+    indptr, indices, values = np.asarray(F.indptr), np.asarray(F.indices), np.asarray(F.values)
+    rows = np.repeat(np.arange(n), np.diff(indptr).astype(np.int64))
+    a_ij = areas[rows] * values
+    # Transposed entries by sorting (row, col) keys.
+    key = rows.astype(np.int64) * n + indices
+    tkey = indices.astype(np.int64) * n + rows
+    order = np.argsort(key)
+    pos = np.searchsorted(key[order], tkey)
+    pos = np.minimum(pos, len(key) - 1)
+    found = key[order][pos] == tkey
+    a_ji = np.where(found, areas[indices] * values[order][pos], 0.0)
+    scale = np.maximum(np.abs(a_ij), np.abs(a_ji))
+    rel = np.abs(a_ij - a_ji) / np.maximum(scale, 1e-300)
+    sums = np.asarray(F.row_sums())
+    return {
+        "reciprocity_max_relative_error": float(rel.max()) if rel.size else 0.0,
+        "reciprocity_mean_relative_error": float(np.average(rel, weights=scale))
+        if rel.size
+        else 0.0,
+        "row_sum_min": float(sums.min()),
+        "row_sum_max": float(sums.max()),
+        "row_sum_mean": float(np.average(sums, weights=areas)),
+    }
+
+
+def solve(
+    scene: Scene,
+    method: str = "direct",
+    *,
+    max_edge: float | None = None,
+    max_area: float | None = None,
+    tol: float = 1e-6,
+    max_iter: int = 1000,
+    importance: bool = True,
+    camera: Camera | None = None,
+    window: tuple[int, int, int, int] | None = None,
+    quadrature: int = 3,
+    shadow_rays: int = 4,
+    seed: int = 0,
+    threads: int | None = None,
+    progress: bool | Callable[[int, int], None] = False,
+    patches: PatchMesh | None = None,
+    form_factors_: tuple[_core.FormFactors, dict[str, Any]] | None = None,
+) -> Solution:
+    """Solve the radiosity system of a diffuse scene and, with ``importance``, its dual.
+
+    Parameters
+    ----------
+    method:
+        ``"direct"`` (dense LU), ``"jacobi"``, ``"gauss_seidel"`` (gathering) or
+        ``"southwell"`` (shooting, progressive refinement).
+    max_edge, max_area:
+        Patch size (see :class:`PatchMesh`); by default 1/20 of the scene's largest extent.
+    tol, max_iter:
+        Iterative methods stop when the relative residual ``max |b - M x| / max |b|`` is at
+        most ``tol``; if ``max_iter`` steps do not get there a :class:`ConvergenceWarning` is
+        issued and ``solution.stats["converged"]`` is False.
+    importance:
+        Also solve ``M^T I = R`` with the same method (the dual: gathering importance is
+        shooting energy and vice versa).
+    camera, window:
+        The view that defines the receiver ``R`` (default ``scene.camera``), optionally a
+        pixel window ``(x0, y0, x1, y1)``.
+    quadrature, shadow_rays, seed:
+        Form-factor accuracy (see :func:`form_factors`).
+    patches, form_factors_:
+        Reuse a patch mesh and its form factors (for comparing methods on one system).
+    """
+    if method not in SOLVERS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(SOLVERS)}")
+    cam = camera or scene.camera
+    if cam is None:
+        raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
+    if not scene.has_emitters:
+        raise ValueError("scene has no emitter: give some mesh a positive emission")
+    if patches is None:
+        if max_edge is None and max_area is None:
+            lo, hi = scene.bounds()
+            max_edge = float(np.max(hi - lo)) / 20.0
+        patches = PatchMesh(scene, max_edge=max_edge, max_area=max_area)
+    n_threads = threads or 0
+    start = time.perf_counter()
+    callback = None
+    bar = None
+    if progress is True:
+        from dualight.render import _TqdmProgress
+
+        bar = _TqdmProgress("form factors")
+        callback = bar
+    elif callable(progress):
+        callback = progress
+    try:
+        F, ff_stats = form_factors_ or form_factors(
+            patches,
+            quadrature=quadrature,
+            shadow_rays=shadow_rays,
+            seed=seed,
+            threads=n_threads,
+            progress=callback,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    system = _core.RadiositySystem(F, patches.reflectance, patches.areas)
+    E = patches.emission
+    R = receiver(patches, cam, window=window, seed=seed)
+    R3 = np.repeat(R[:, None], 3, axis=1)
+
+    stats: dict[str, Any] = {"patches": len(patches), "form_factors": ff_stats, "method": method}
+    history: dict[str, list[Step]] = {}
+    solve_start = time.perf_counter()
+
+    def run(rhs: np.ndarray, dual: bool, factors: Any = None) -> tuple[np.ndarray, Any]:
+        cls = SOLVERS[method]
+        if cls is DirectSolver:
+            solver = DirectSolver(system, rhs, dual=dual, factors=factors, threads=n_threads)
+        elif method == "jacobi":
+            solver = cls(system, rhs, dual=dual, threads=n_threads)  # type: ignore[call-arg]
+        else:
+            solver = cls(system, rhs, dual=dual)  # type: ignore[call-arg]
+        steps = solver.solve(tol=tol, max_iter=1 if cls is DirectSolver else max_iter)
+        side = "importance" if dual else "radiosity"
+        history[side] = steps
+        if not solver.converged(tol):
+            warnings.warn(
+                f"{method} did not converge for {side}: residual {solver.residual:.3g} > tol "
+                f"{tol:g} after {len(steps)} steps",
+                ConvergenceWarning,
+                stacklevel=3,
+            )
+        stats[f"{side}_residual"] = solver.residual
+        stats[f"{side}_iterations"] = len(steps)
+        stats[f"{side}_converged"] = solver.converged(tol)
+        return np.array(solver.solution), getattr(solver, "factors", None)
+
+    B, factors = run(E, dual=False)
+    I_dual = run(R3, dual=True, factors=factors)[0] if importance else None  # noqa: N806
+    stats["converged"] = stats["radiosity_converged"] and (
+        not importance or stats["importance_converged"]
+    )
+    stats["solve_seconds"] = time.perf_counter() - solve_start
+    stats["seconds"] = time.perf_counter() - start
+    return Solution(
+        patches=patches,
+        B=B,
+        I=I_dual,
+        E=E,
+        R=R3,
+        form_factors=F,
+        camera=cam,
+        method=method,
+        stats=stats,
+        history=history,
+    )

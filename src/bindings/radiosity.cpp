@@ -1,0 +1,229 @@
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings/interruptible.h"
+#include "bindings/numpy_util.h"
+#include "geometry/camera_hits.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/solve_direct.h"
+#include "radiosity/solve_gathering.h"
+#include "radiosity/solve_shooting.h"
+
+namespace dualight::bindings {
+
+namespace {
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::vector<double> n_by_3(const DoubleArray& a, size_t n, const char* name) {
+  if (a.ndim() != 2 || a.shape(1) != 3 || static_cast<size_t>(a.shape(0)) != n) {
+    throw py::value_error(std::string(name) + " must have shape (" + std::to_string(n) + ", 3)");
+  }
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+py::array_t<double> as_n_by_3(std::vector<double> v) {
+  const auto n = static_cast<py::ssize_t>(v.size() / 3);
+  return to_numpy(std::move(v), {n, 3});
+}
+
+py::dict step_dict(const SolverStep& s) {
+  py::dict d;
+  d["iteration"] = s.iteration;
+  d["residual"] = s.residual;
+  d["seconds"] = s.seconds;
+  return d;
+}
+
+SystemSide side_of(bool dual) { return dual ? SystemSide::Dual : SystemSide::Primal; }
+
+// Binds a stepped solver: step() with the GIL released, solution, residual, iteration.
+template <class Solver, class... Extra>
+py::class_<Solver> bind_stepped(py::module_& m, const char* name, const char* doc) {
+  py::class_<Solver> cls(m, name, doc);
+  cls.def("step",
+          [](Solver& s) {
+            SolverStep st;
+            {
+              py::gil_scoped_release release;
+              st = s.step();
+            }
+            return step_dict(st);
+          })
+      .def_property_readonly("solution", [](const Solver& s) { return as_n_by_3(s.solution()); })
+      .def_property_readonly("residual", &Solver::residual)
+      .def_property_readonly("iteration", &Solver::iteration);
+  return cls;
+}
+
+}  // namespace
+
+void bind_radiosity(py::module_& m) {
+  m.def(
+      "point_polygon_form_factor",
+      [](const std::array<float, 3>& x, const std::array<float, 3>& n,
+         const py::array_t<float, py::array::c_style | py::array::forcecast>& polygon) {
+        const std::vector<float> p = rows_of(polygon, 3, "polygon");
+        std::vector<Vec3> poly;
+        for (size_t k = 0; k < p.size(); k += 3) poly.emplace_back(p[k], p[k + 1], p[k + 2]);
+        return point_polygon_form_factor(Vec3(x[0], x[1], x[2]), Vec3(n[0], n[1], n[2]), poly);
+      },
+      py::arg("point"), py::arg("normal"), py::arg("polygon"),
+      "Unoccluded form factor from a differential area to a planar convex polygon (3-8 vertices) "
+      "whose right-hand-rule normal faces the point; 0 if it faces away.");
+
+  py::class_<FormFactorOptions>(m, "FormFactorOptions", "Options of compute_form_factors (keywords only).")
+      .def(py::init([](int quadrature, int shadow_rays, uint64_t seed, int threads, float min_value) {
+             if (quadrature != 1 && quadrature != 3 && quadrature != 7) {
+               throw py::value_error("quadrature must be 1, 3 or 7 points");
+             }
+             if (shadow_rays < 0) throw py::value_error("shadow_rays must be >= 0");
+             if (threads < 0) throw py::value_error("threads must be >= 0");
+             if (!(min_value >= 0.f)) throw py::value_error("min_value must be >= 0");
+             return FormFactorOptions{quadrature, shadow_rays, seed, threads, min_value};
+           }),
+           py::kw_only(), py::arg("quadrature") = 3, py::arg("shadow_rays") = 4, py::arg("seed") = 0,
+           py::arg("threads") = 0, py::arg("min_value") = 0.f)
+      .def_readonly("quadrature", &FormFactorOptions::quadrature)
+      .def_readonly("shadow_rays", &FormFactorOptions::shadow_rays);
+
+  py::class_<FormFactorMatrices, std::shared_ptr<FormFactorMatrices>>(m, "FormFactors",
+                                                                      "Sparse form factors F (CSR) and F^T.")
+      .def_property_readonly("n", [](const FormFactorMatrices& f) { return f.F.n; })
+      .def_property_readonly("nonzeros", [](const FormFactorMatrices& f) { return f.F.nonzeros(); })
+      .def_property_readonly("indptr", [](const FormFactorMatrices& f) {
+        return py::array_t<uint64_t>(static_cast<py::ssize_t>(f.F.indptr.size()), f.F.indptr.data());
+      })
+      .def_property_readonly("indices", [](const FormFactorMatrices& f) {
+        return py::array_t<uint32_t>(static_cast<py::ssize_t>(f.F.indices.size()), f.F.indices.data());
+      })
+      .def_property_readonly("values", [](const FormFactorMatrices& f) {
+        return py::array_t<float>(static_cast<py::ssize_t>(f.F.values.size()), f.F.values.data());
+      })
+      .def("row_sums", [](const FormFactorMatrices& f) {
+        std::vector<double> s(f.F.n);
+        for (uint32_t i = 0; i < f.F.n; ++i) s[i] = f.F.row_sum(i);
+        return to_numpy(std::move(s), {static_cast<py::ssize_t>(f.F.n)});
+      })
+      .def_static(
+          "from_csr",
+          [](uint32_t n, const py::array_t<uint64_t, py::array::c_style | py::array::forcecast>& indptr,
+             const py::array_t<uint32_t, py::array::c_style | py::array::forcecast>& indices,
+             const py::array_t<float, py::array::c_style | py::array::forcecast>& values) {
+            CsrMatrix F;
+            F.n = n;
+            F.indptr.assign(indptr.data(), indptr.data() + indptr.size());
+            F.indices.assign(indices.data(), indices.data() + indices.size());
+            F.values.assign(values.data(), values.data() + values.size());
+            if (F.indptr.size() != n + 1 || F.indptr.back() != F.indices.size() || F.indices.size() != F.values.size()) {
+              throw py::value_error("inconsistent CSR arrays");
+            }
+            for (const uint32_t j : F.indices) {
+              if (j >= n) throw py::value_error("CSR column index out of range");
+            }
+            return std::make_shared<FormFactorMatrices>(std::move(F));
+          },
+          py::arg("n"), py::arg("indptr"), py::arg("indices"), py::arg("values"));
+
+  m.def(
+      "compute_form_factors",
+      [](std::shared_ptr<const Scene> patches, const FormFactorOptions& options, const py::object& progress) {
+        RenderControl control;
+        FormFactorStats stats;
+        auto run = run_interruptible(
+            [&] { return std::make_shared<FormFactorMatrices>(compute_form_factors(*patches, options, control, stats)); },
+            control, progress);
+        if (run.keyboard_interrupt) {  // rows are missing: no partial matrix is worth keeping
+          PyErr_SetNone(PyExc_KeyboardInterrupt);
+          throw py::error_already_set();
+        }
+        py::dict s;
+        s["pairs_tested"] = stats.pairs_tested;
+        s["pairs_facing"] = stats.pairs_facing;
+        s["rays"] = stats.rays;
+        s["seconds"] = stats.seconds;
+        s["rays_per_second"] = stats.seconds > 0 ? static_cast<double>(stats.rays) / stats.seconds : 0.0;
+        return py::make_tuple(run.result, s);
+      },
+      py::arg("patches"), py::arg("options"), py::arg("progress") = py::none(),
+      "Form factors between all triangles of `patches` (one patch each): (FormFactors, stats).");
+
+  py::class_<RadiositySystem, std::shared_ptr<RadiositySystem>>(m, "RadiositySystem",
+                                                                "M = I - diag(rho) F for 3 channels.")
+      .def(py::init([](std::shared_ptr<const FormFactorMatrices> f, const DoubleArray& reflectance,
+                       const py::array_t<double, py::array::c_style | py::array::forcecast>& areas) {
+             const size_t n = f->F.n;
+             if (areas.ndim() != 1 || static_cast<size_t>(areas.shape(0)) != n) {
+               throw py::value_error("areas must have shape (" + std::to_string(n) + ",)");
+             }
+             return std::make_shared<RadiositySystem>(f, n_by_3(reflectance, n, "reflectance"),
+                                                      std::vector<double>(areas.data(), areas.data() + n));
+           }),
+           py::arg("form_factors"), py::arg("reflectance"), py::arg("areas"))
+      .def_property_readonly("size", &RadiositySystem::size)
+      .def(
+          "residual",
+          [](const RadiositySystem& s, const DoubleArray& x, const DoubleArray& b, bool dual) {
+            return s.relative_residual(side_of(dual), n_by_3(x, s.size(), "x"), n_by_3(b, s.size(), "b"));
+          },
+          py::arg("x"), py::arg("b"), py::arg("dual") = false, "max |b - M x| / max |b| (M^T when dual).");
+
+  bind_stepped<JacobiSolver>(m, "JacobiSolver", "Jacobi sweeps (gathering); dual=True solves M^T x = b.")
+      .def(py::init([](std::shared_ptr<const RadiositySystem> s, const DoubleArray& rhs, bool dual, int threads) {
+             return JacobiSolver(s, side_of(dual), n_by_3(rhs, s->size(), "rhs"), threads);
+           }),
+           py::arg("system"), py::arg("rhs"), py::arg("dual") = false, py::arg("threads") = 0);
+  bind_stepped<GaussSeidelSolver>(m, "GaussSeidelSolver", "Gauss-Seidel sweeps (gathering).")
+      .def(py::init([](std::shared_ptr<const RadiositySystem> s, const DoubleArray& rhs, bool dual) {
+             return GaussSeidelSolver(s, side_of(dual), n_by_3(rhs, s->size(), "rhs"));
+           }),
+           py::arg("system"), py::arg("rhs"), py::arg("dual") = false);
+  bind_stepped<SouthwellSolver>(m, "SouthwellSolver", "Southwell / progressive refinement (shooting).")
+      .def(py::init([](std::shared_ptr<const RadiositySystem> s, const DoubleArray& rhs, bool dual,
+                       uint32_t shots_per_step) {
+             return SouthwellSolver(s, side_of(dual), n_by_3(rhs, s->size(), "rhs"), shots_per_step);
+           }),
+           py::arg("system"), py::arg("rhs"), py::arg("dual") = false, py::arg("shots_per_step") = 0)
+      .def_property_readonly("unshot", [](const SouthwellSolver& s) { return as_n_by_3(s.unshot()); })
+      .def_property_readonly("ambient", &SouthwellSolver::ambient)
+      .def_property_readonly("shots", &SouthwellSolver::shots);
+
+  py::class_<DirectSolver>(m, "DirectSolver", "Dense LU per channel; solves M x = b and M^T x = b.")
+      .def(py::init([](std::shared_ptr<const RadiositySystem> s, int threads) {
+             py::gil_scoped_release release;
+             return std::make_unique<DirectSolver>(s, threads);
+           }),
+           py::arg("system"), py::arg("threads") = 0)
+      .def(
+          "solve",
+          [](const DirectSolver& d, const DoubleArray& rhs, bool dual) {
+            std::vector<double> b(rhs.data(), rhs.data() + rhs.size());
+            std::vector<double> x;
+            {
+              py::gil_scoped_release release;
+              x = d.solve(side_of(dual), b);
+            }
+            return as_n_by_3(std::move(x));
+          },
+          py::arg("rhs"), py::arg("dual") = false)
+      .def_property_readonly("factor_seconds", &DirectSolver::factor_seconds);
+
+  m.def(
+      "trace_camera_hits",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, int samples_per_axis, uint64_t seed,
+         int threads) {
+        CameraHits h;
+        {
+          py::gil_scoped_release release;
+          h = trace_camera_hits(*scene, camera, samples_per_axis, seed, threads);
+        }
+        return py::make_tuple(to_numpy(std::move(h.prim), {h.height, h.width, h.samples}),
+                              to_numpy(std::move(h.barycentric), {h.height, h.width, h.samples, 2}));
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("samples_per_axis") = 2, py::arg("seed") = 0,
+      py::arg("threads") = 0,
+      "Triangle hit by each stratified camera sample, (H x W x S int32, -1 = miss) and its barycentrics.");
+}
+
+}  // namespace dualight::bindings

@@ -1,0 +1,228 @@
+#include "radiosity/form_factors.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+
+namespace dualight {
+
+namespace {
+
+// Double-precision vectors: the contour formula subtracts nearly equal angles near shared edges.
+struct D3 {
+  double x, y, z;
+};
+D3 to_d3(const Vec3& v) { return {v.x, v.y, v.z}; }
+D3 sub(const D3& a, const D3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 add_scaled(const D3& a, const D3& d, double t) { return {a.x + t * d.x, a.y + t * d.y, a.z + t * d.z}; }
+double dot3(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 cross3(const D3& a, const D3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double norm3(const D3& a) { return std::sqrt(dot3(a, a)); }
+
+constexpr int kMaxClipped = 16;  // a triangle clipped by one plane has at most 4 vertices
+
+// Lambert's contour integral over a polygon entirely on the non-negative side of x's tangent plane.
+double contour_integral(const D3& x, const D3& n, const D3* poly, int m) {
+  double sum = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const D3 r0 = sub(poly[k], x), r1 = sub(poly[(k + 1) % m], x);
+    const D3 c = cross3(r0, r1);
+    const double len = norm3(c);
+    if (!(len > 0.0)) continue;  // a degenerate edge (zero length or through x) adds nothing
+    const double gamma = std::atan2(len, dot3(r0, r1));
+    sum += gamma * dot3(n, c) / len;
+  }
+  return std::abs(sum) / (2.0 * M_PI);
+}
+
+// Clips a convex polygon to dot(n, p - x) >= 0 (Sutherland-Hodgman against one plane).
+int clip_to_half_space(const D3& x, const D3& n, const D3* in, int m, D3* out) {
+  int count = 0;
+  for (int k = 0; k < m; ++k) {
+    const D3& a = in[k];
+    const D3& b = in[(k + 1) % m];
+    const double da = dot3(n, sub(a, x)), db = dot3(n, sub(b, x));
+    if (da >= 0.0) out[count++] = a;
+    if ((da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0)) out[count++] = add_scaled(a, sub(b, a), da / (da - db));
+  }
+  return count;
+}
+
+double form_factor_to_polygon(const D3& x, const D3& n, const D3* poly, int m) {
+  const D3 source_normal = cross3(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
+  if (!(dot3(source_normal, sub(x, poly[0])) > 0.0)) return 0.0;  // x behind or in the source's plane
+  D3 clipped[kMaxClipped];
+  const int count = clip_to_half_space(x, n, poly, m, clipped);
+  return count < 3 ? 0.0 : contour_integral(x, n, clipped, count);
+}
+
+struct QuadraturePoint {
+  double b0, b1, b2, weight;
+};
+
+std::vector<QuadraturePoint> triangle_rule(int order) {
+  switch (order) {
+    case 1:
+      return {{1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0}};
+    case 3:  // degree 2 (Strang-Fix)
+      return {{2.0 / 3, 1.0 / 6, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 2.0 / 3, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 1.0 / 6, 2.0 / 3, 1.0 / 3}};
+    case 7: {  // degree 5 (Radon)
+      const double s = std::sqrt(15.0);
+      const double a = (6.0 - s) / 21.0, b = (6.0 + s) / 21.0;
+      const double wa = (155.0 - s) / 1200.0, wb = (155.0 + s) / 1200.0;
+      return {{1.0 / 3, 1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, 1 - 2 * a, wa}, {a, 1 - 2 * a, a, wa},
+              {1 - 2 * a, a, a, wa},           {b, b, 1 - 2 * b, wb}, {b, 1 - 2 * b, b, wb},
+              {1 - 2 * b, b, b, wb}};
+    }
+    default:
+      throw std::invalid_argument("quadrature must be 1, 3 or 7 points");
+  }
+}
+
+}  // namespace
+
+double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
+  if (polygon.size() < 3 || polygon.size() > kMaxClipped / 2) {
+    throw std::invalid_argument("polygon needs 3 to 8 vertices");
+  }
+  std::array<D3, kMaxClipped> poly{};
+  for (size_t k = 0; k < polygon.size(); ++k) poly[k] = to_d3(polygon[k]);
+  const D3 nd = to_d3(n);
+  const double len = norm3(nd);
+  if (!(len > 0.0)) throw std::invalid_argument("normal must be non-zero");
+  return form_factor_to_polygon(to_d3(x), {nd.x / len, nd.y / len, nd.z / len}, poly.data(),
+                                static_cast<int>(polygon.size()));
+}
+
+CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
+                               FormFactorStats& stats) {
+  if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
+  const std::vector<QuadraturePoint> rule = triangle_rule(options.quadrature);
+  const auto n = static_cast<uint32_t>(patches.triangle_count());
+  control.total.store(n);
+  const auto start = std::chrono::steady_clock::now();
+
+  struct Corners {
+    D3 v[3];
+  };
+  std::vector<Corners> tri(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) tri[i].v[c] = to_d3(patches.vertex(i, c));
+  }
+
+  struct Row {
+    std::vector<uint32_t> cols;
+    std::vector<float> vals;
+  };
+  std::vector<Row> rows(n);
+  std::atomic<uint64_t> tested{0}, facing{0}, rays{0};
+  const int sqrt_rays = static_cast<int>(std::lround(std::sqrt(options.shadow_rays)));
+  const bool square_strata = sqrt_rays * sqrt_rays == options.shadow_rays;
+
+  constexpr size_t kRowsPerTask = 16;
+  parallel_for_each_index(options.threads, (n + kRowsPerTask - 1) / kRowsPerTask, [&](size_t task) {
+    uint64_t local_tested = 0, local_facing = 0, local_rays = 0;
+    std::vector<D3> points(rule.size());
+    std::vector<double> kernel(rule.size());
+    for (uint32_t i = static_cast<uint32_t>(task * kRowsPerTask);
+         i < std::min<uint64_t>(n, (task + 1) * kRowsPerTask) && !control.cancelled(); ++i) {
+      const Corners& ti = tri[i];
+      const D3 ni = to_d3(patches.normal(i));
+      const Vec3 ni_f = patches.normal(i);
+      for (size_t k = 0; k < rule.size(); ++k) {
+        const QuadraturePoint& q = rule[k];
+        points[k] = {q.b0 * ti.v[0].x + q.b1 * ti.v[1].x + q.b2 * ti.v[2].x,
+                     q.b0 * ti.v[0].y + q.b1 * ti.v[1].y + q.b2 * ti.v[2].y,
+                     q.b0 * ti.v[0].z + q.b1 * ti.v[1].z + q.b2 * ti.v[2].z};
+      }
+      Row& row = rows[i];
+      for (uint32_t j = 0; j < n; ++j) {
+        if (j == i) continue;  // a planar patch does not see itself
+        const Corners& tj = tri[j];
+        // Exact culls: the planes are shared by all points of each patch.
+        if (!(dot3(ni, sub(tj.v[0], ti.v[0])) > 0.0 || dot3(ni, sub(tj.v[1], ti.v[0])) > 0.0 ||
+              dot3(ni, sub(tj.v[2], ti.v[0])) > 0.0)) {
+          continue;  // j lies entirely behind or in i's plane
+        }
+        const D3 nj = cross3(sub(tj.v[1], tj.v[0]), sub(tj.v[2], tj.v[0]));
+        if (!(dot3(nj, sub(ti.v[0], tj.v[0])) > 0.0 || dot3(nj, sub(ti.v[1], tj.v[0])) > 0.0 ||
+              dot3(nj, sub(ti.v[2], tj.v[0])) > 0.0)) {
+          continue;  // i lies entirely behind or in j's plane
+        }
+        ++local_tested;
+        double unoccluded = 0.0;
+        for (size_t k = 0; k < rule.size(); ++k) {
+          kernel[k] = form_factor_to_polygon(points[k], ni, tj.v, 3);
+          unoccluded += rule[k].weight * kernel[k];
+        }
+        if (!(unoccluded > 0.0)) continue;
+        ++local_facing;
+        double value = unoccluded;
+        if (options.shadow_rays > 0) {
+          Pcg32 rng(hash_combine(options.seed, i), j);
+          const Vec3 nj_f = patches.normal(j);
+          value = 0.0;
+          for (size_t k = 0; k < rule.size(); ++k) {
+            if (!(kernel[k] > 0.0)) continue;
+            const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y),
+                         static_cast<float>(points[k].z));
+            int visible = 0;
+            for (int s = 0; s < options.shadow_rays; ++s) {
+              // Stratified points on the source triangle (a jittered grid in the unit square).
+              Point2 u{rng.next_float(), rng.next_float()};
+              if (square_strata) {
+                u = {(static_cast<float>(s % sqrt_rays) + u.u) / static_cast<float>(sqrt_rays),
+                     (static_cast<float>(s / sqrt_rays) + u.v) / static_cast<float>(sqrt_rays)};
+              } else {
+                u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
+              }
+              const Point2 b = square_to_uniform_triangle(u);
+              const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
+                             patches.vertex(j, 2) * b.v;
+              visible += patches.visible(x, ni_f, y, nj_f) ? 1 : 0;
+            }
+            local_rays += static_cast<uint64_t>(options.shadow_rays);
+            value += rule[k].weight * kernel[k] * visible / options.shadow_rays;
+          }
+        }
+        if (value > options.min_value && value > 0.0) {
+          row.cols.push_back(j);
+          row.vals.push_back(static_cast<float>(value));
+        }
+      }
+      control.done.fetch_add(1, std::memory_order_relaxed);
+    }
+    tested.fetch_add(local_tested);
+    facing.fetch_add(local_facing);
+    rays.fetch_add(local_rays);
+  });
+
+  CsrMatrix F;
+  F.n = n;
+  F.indptr.assign(n + 1, 0);
+  for (uint32_t i = 0; i < n; ++i) F.indptr[i + 1] = F.indptr[i] + rows[i].cols.size();
+  F.indices.reserve(F.indptr[n]);
+  F.values.reserve(F.indptr[n]);
+  for (Row& r : rows) {
+    F.indices.insert(F.indices.end(), r.cols.begin(), r.cols.end());
+    F.values.insert(F.values.end(), r.vals.begin(), r.vals.end());
+    r = Row{};  // free as we go: rows can be large
+  }
+  stats.pairs_tested = tested.load();
+  stats.pairs_facing = facing.load();
+  stats.rays = rays.load();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.interrupted = control.cancelled();
+  return F;
+}
+
+}  // namespace dualight

@@ -1,0 +1,46 @@
+// Patch-to-patch form factors F_ij: the fraction of energy leaving patch i (uniformly, Lambertian)
+// that arrives at patch j, F_ij = 1/A_i int_Ai int_Aj V cos_i cos_j / (pi r^2) dA_j dA_i
+// [Sillion and Puech 1994, ch. 4; Cohen and Wallace 1993, ch. 4].
+//
+// The inner integral over patch j is done exactly by the point-to-polygon contour formula
+// (Lambert), after clipping j to the half-space above i's tangent plane; the outer integral uses
+// a symmetric quadrature rule on patch i (1, 3 or 7 points). Visibility is the fraction of
+// stratified shadow rays from each quadrature point to j that arrive, so F_ij = sum_k w_k
+// F(x_k -> A_j) V_k. Patches are one-sided: only the side of their normal sends and receives.
+// Because quadrature points lie inside patch i, the kernel's singularity on a shared edge is
+// never sampled; the contour formula integrates it exactly.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/render_control.h"
+#include "geometry/scene.h"
+#include "radiosity/csr_matrix.h"
+
+namespace dualight {
+
+struct FormFactorOptions {
+  int quadrature = 3;      // points on the receiving patch: 1 (centroid), 3 (degree 2), 7 (degree 5)
+  int shadow_rays = 4;     // per quadrature point and source patch; 0 = no occlusion test
+  uint64_t seed = 0;
+  int threads = 0;
+  float min_value = 0.f;   // entries below this are dropped (0 keeps every non-zero)
+};
+
+struct FormFactorStats {
+  uint64_t pairs_tested = 0;   // (i, j) pairs whose kernel was evaluated
+  uint64_t pairs_facing = 0;   // pairs with a non-zero unoccluded form factor
+  uint64_t rays = 0;
+  double seconds = 0.0;
+  bool interrupted = false;
+};
+
+// Unoccluded form factor from a differential area at x (unit normal n) to a planar polygon,
+// whose front side (right-hand rule normal) must face x; 0 when x is behind or in its plane.
+double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon);
+
+// Every row i of F for the triangles of `patches` (one patch per triangle).
+CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
+                               FormFactorStats& stats);
+
+}  // namespace dualight

@@ -1,0 +1,53 @@
+#include "radiosity/solve_direct.h"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <chrono>
+#include <string>
+
+namespace dualight {
+
+struct DirectSolver::Factors {
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu[3];
+};
+
+DirectSolver::DirectSolver(std::shared_ptr<const RadiositySystem> system, int threads)
+    : system_(std::move(system)), factors_(std::make_unique<Factors>()) {
+  const size_t n = system_->size();
+  if (n > kMaxDirectPatches) {
+    throw std::invalid_argument("the direct solver holds a dense n x n matrix: " + std::to_string(n) +
+                                " patches is more than " + std::to_string(kMaxDirectPatches) +
+                                "; use an iterative method");
+  }
+  if (threads > 0) Eigen::setNbThreads(threads);
+  const auto t0 = std::chrono::steady_clock::now();
+  const CsrMatrix& F = system_->matrices->F;
+  Eigen::MatrixXd M(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (int c = 0; c < 3; ++c) {
+    M.setIdentity();
+    for (uint32_t i = 0; i < n; ++i) {
+      const double rho = system_->rho[3 * i + c];
+      for (uint64_t k = F.indptr[i]; k < F.indptr[i + 1]; ++k) M(i, F.indices[k]) -= rho * F.values[k];
+    }
+    factors_->lu[c].compute(M);
+  }
+  factor_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+DirectSolver::~DirectSolver() = default;
+
+std::vector<double> DirectSolver::solve(SystemSide side, const std::vector<double>& rhs) const {
+  const auto n = static_cast<Eigen::Index>(system_->size());
+  if (rhs.size() != 3 * system_->size()) throw std::invalid_argument("right-hand side must be n x 3");
+  std::vector<double> out(rhs.size());
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd b(n);
+    for (Eigen::Index i = 0; i < n; ++i) b(i) = rhs[3 * i + c];
+    const Eigen::VectorXd x =
+        side == SystemSide::Primal ? factors_->lu[c].solve(b) : Eigen::VectorXd(factors_->lu[c].transpose().solve(b));
+    for (Eigen::Index i = 0; i < n; ++i) out[3 * i + c] = x(i);
+  }
+  return out;
+}
+
+}  // namespace dualight
