@@ -145,10 +145,13 @@ class Solution:
         mode: Mode = "radiosity",
         *,
         smooth: bool = True,
-        samples_per_axis: int = 3,
+        samples_per_axis: int = 4,
         seed: int = 0,
     ) -> Image:
         """Draw the solution from ``camera`` (default: the solution's camera).
+
+        With the defaults (the receiver's samples and seed), the mean of the flat
+        (``smooth=False``) radiosity picture is exactly ``measurement_primal``.
 
         ``"radiosity"``: radiance ``B / pi`` (linear RGB, comparable with a path-traced image),
         flat per patch or (``smooth``) interpolated from vertex values. ``"importance"``: the
