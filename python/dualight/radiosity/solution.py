@@ -290,7 +290,7 @@ def solve(
         ``"direct"`` (dense LU), ``"jacobi"``, ``"gauss_seidel"`` (gathering) or
         ``"southwell"`` (shooting, progressive refinement).
     max_edge, max_area:
-        Patch size (see :class:`PatchMesh`); by default 1/20 of the scene's largest extent.
+        Patch size (see :class:`PatchMesh`); by default 1/10 of the scene's largest extent.
     tol, max_iter:
         Iterative methods stop when the relative residual ``max |b - M x| / max |b|`` is at
         most ``tol``; if ``max_iter`` steps do not get there a :class:`ConvergenceWarning` is
@@ -316,7 +316,7 @@ def solve(
     if patches is None:
         if max_edge is None and max_area is None:
             lo, hi = scene.bounds()
-            max_edge = float(np.max(hi - lo)) / 20.0
+            max_edge = float(np.max(hi - lo)) / 10.0  # ~3,000 patches in a Cornell box
         patches = PatchMesh(scene, max_edge=max_edge, max_area=max_area)
     n_threads = threads or 0
     start = time.perf_counter()
