@@ -47,6 +47,28 @@ void fill_ray(const Ray& ray, RTCRay& r) {
   r.flags = 0;
 }
 
+#if DUALIGHT_EMBREE4
+using QueryContext = RTCRayQueryContext;
+#else
+using QueryContext = RTCIntersectContext;
+#endif
+
+// Embree hands the query context to the filter callback: our filter rides behind it.
+struct FilterContext {
+  QueryContext context;
+  const HitFilter* filter;
+};
+
+void filter_callback(const RTCFilterFunctionNArguments* args) {
+  const auto* fc = reinterpret_cast<const FilterContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCRayN_tfar(args->ray, args->N, i);  // the candidate hit's distance
+    if (fc->filter->ignore(fc->filter->user, prim, t)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 struct EmbreeAccel::Impl {
@@ -62,7 +84,11 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
   impl_->scene.reset(rtcNewScene(device));
   RTCScene scene = impl_->scene.get();
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+#if DUALIGHT_EMBREE4
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS);
+#else
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+#endif
 
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const size_t n_vertices = positions.size() / 3, n_triangles = triangles.size() / 3;
@@ -105,15 +131,27 @@ RayHit EmbreeAccel::intersect(const Ray& ray) const {
   return out;
 }
 
-bool EmbreeAccel::occluded(const Ray& ray) const {
+bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
   RTCRay r;
   fill_ray(ray, r);
+  FilterContext fc{};
+  fc.filter = filter;
 #if DUALIGHT_EMBREE4
-  rtcOccluded1(impl_->scene.get(), &r);
+  rtcInitRayQueryContext(&fc.context);
+  RTCOccludedArguments args;
+  rtcInitOccludedArguments(&args);
+  args.context = &fc.context;
+  if (filter != nullptr) {
+    // Embree 4 runs an argument filter only when the query asks for it on every geometry.
+    args.filter = filter_callback;
+    args.flags = static_cast<RTCRayQueryFlags>(args.flags | RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER);
+    args.feature_mask = static_cast<RTCFeatureFlags>(RTC_FEATURE_FLAG_ALL);
+  }
+  rtcOccluded1(impl_->scene.get(), &r, &args);
 #else
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcOccluded1(impl_->scene.get(), &ctx, &r);
+  rtcInitIntersectContext(&fc.context);
+  if (filter != nullptr) fc.context.filter = filter_callback;
+  rtcOccluded1(impl_->scene.get(), &fc.context, &r);
 #endif
   // Embree signals occlusion by setting tfar to -inf.
   return r.tfar < 0.f;

@@ -17,6 +17,12 @@ struct RayHit {
   bool hit() const { return prim != kNoHit; }
 };
 
+// Lets an occlusion query ignore some hits (e.g. the surface the ray is aimed at).
+struct HitFilter {
+  bool (*ignore)(const void* user, uint32_t prim, float t) = nullptr;
+  const void* user = nullptr;
+};
+
 class EmbreeAccel {
  public:
   // positions: 3 floats per vertex; triangles: 3 indices per triangle. Copied into Embree buffers.
@@ -26,8 +32,8 @@ class EmbreeAccel {
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
 
   RayHit intersect(const Ray& ray) const;
-  // True when anything blocks the ray in (0, ray.tmax).
-  bool occluded(const Ray& ray) const;
+  // True when anything blocks the ray in (0, ray.tmax), apart from hits the filter ignores.
+  bool occluded(const Ray& ray, const HitFilter* filter = nullptr) const;
 
  private:
   struct Impl;

@@ -77,13 +77,37 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, const Vec3& n1) const {
+namespace {
+
+// Hits that are the target itself, or a triangle coplanar with it at the target point (a
+// neighbour sharing the point up to rounding), do not block.
+struct VisibilityQuery {
+  const Scene* scene;
+  uint32_t target;
+  Vec3 origin, direction, target_point, target_normal;
+  float tolerance;
+
+  static bool ignore(const void* user, uint32_t prim, float t) {
+    const auto* q = static_cast<const VisibilityQuery*>(user);
+    if (prim == q->target) return true;
+    if (std::abs(dot(q->target_normal, q->scene->normal(prim))) < 1.f - 1e-5f) return false;
+    const Vec3 hit = q->origin + q->direction * t;
+    return std::abs(dot(q->target_normal, hit - q->target_point)) <= q->tolerance &&
+           std::abs(dot(q->target_normal, q->scene->vertex(prim, 0) - q->target_point)) <= q->tolerance;
+  }
+};
+
+}  // namespace
+
+bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target) const {
   const Vec3 d = p1 - p0;
   const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
-  const Vec3 o1 = offset_ray_origin(p1, dot(n1, d) < 0.f ? n1 : -n1);
-  // Unnormalised direction: t in (0, 1) spans the segment; stop just short of the far end.
-  Ray ray{o0, o1 - o0, 1.f - 1e-4f};
-  return !accel_->occluded(ray);
+  // Aimed at p1 itself (t = 1), so surfaces beyond it never count; any other surface before it
+  // blocks, however close to p1 it stands, so walls meeting the target's surface do not leak.
+  const float scale = std::max(1.f, max_component(vmax(vmax(p1, -p1), vmax(o0, -o0))));
+  const VisibilityQuery query{this, target, o0, p1 - o0, p1, normal_[target], 1e-5f * scale};
+  const HitFilter filter{&VisibilityQuery::ignore, &query};
+  return !accel_->occluded(Ray{o0, p1 - o0, 1.f}, &filter);
 }
 
 EmitterSample Scene::sample_emitter(float u_select, Point2 u) const {
@@ -93,6 +117,7 @@ EmitterSample Scene::sample_emitter(float u_select, Point2 u) const {
   EmitterSample s;
   s.p = vertex(prim, 0) * (1.f - b.u - b.v) + vertex(prim, 1) * b.u + vertex(prim, 2) * b.v;
   s.n = normal_[prim];
+  s.prim = prim;
   s.Le = materials_[material_of_[prim]].emission;
   s.pdf_a = emitter_distribution_.pmf(i) / area_[prim];
   return s;

@@ -28,6 +28,7 @@ struct SurfaceHit {
 
 struct EmitterSample {
   Vec3 p, n;
+  uint32_t prim = 0;  // the emitting triangle
   Color Le;           // radiance leaving p on the front side
   float pdf_a = 0.f;  // area density, including the choice of triangle
 };
@@ -54,8 +55,11 @@ class Scene {
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Ray& ray) const { return accel_->occluded(ray); }
-  // Unoccluded between two surface points, each offset along its normal towards the other.
-  bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, const Vec3& n1) const;
+  // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
+  // The ray aims at p1 itself and the first hit must be the target or a triangle coplanar with it
+  // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to
+  // p1 it stands, so walls that meet the target's surface do not leak.
+  bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target) const;
 
   EmitterSample sample_emitter(float u_select, Point2 u) const;
   // Area density of sample_emitter producing a point on triangle `prim`.

@@ -57,7 +57,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
         const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
         if (!is_black(f)) {
           ++rays;
-          if (scene.visible(hit.p, ns, es.p, es.n)) {
+          if (scene.visible(hit.p, ns, es.p, es.prim)) {
             const float pdf_light_w = es.pdf_a * dist2 / cos_light;
             const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
             const float weight = power_heuristic(pdf_light_w, pdf_bsdf_w);

@@ -169,7 +169,6 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
         double value = unoccluded;
         if (options.shadow_rays > 0) {
           Pcg32 rng(hash_combine(options.seed, i), j);
-          const Vec3 nj_f = patches.normal(j);
           value = 0.0;
           for (size_t k = 0; k < rule.size(); ++k) {
             if (!(kernel[k] > 0.0)) continue;
@@ -188,7 +187,7 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
               const Point2 b = square_to_uniform_triangle(u);
               const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
                              patches.vertex(j, 2) * b.v;
-              visible += patches.visible(x, ni_f, y, nj_f) ? 1 : 0;
+              visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
             }
             local_rays += static_cast<uint64_t>(options.shadow_rays);
             value += rule[k].weight * kernel[k] * visible / options.shadow_rays;

@@ -77,3 +77,34 @@ TEST_CASE(camera_looks_along_forward_with_row_zero_on_top) {
   CHECK(cam.generate_ray(100.f, 25.f).d.x < 0.f);  // right edge is -x (right = forward x up)
   CHECK_NEAR(cam.generate_ray(100.f, 25.f).d.x, -std::sqrt(0.5f), 1e-6f);
 }
+
+TEST_CASE(occlusion_filter_ignores_chosen_hits) {
+  // Triangles at z = 0 (prim 0) and z = -1 (prim 1); the filter ignores prim 0.
+  const EmbreeAccel accel({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1, 1, 0, -1, 0, 1, -1}, {0, 1, 2, 3, 4, 5});
+  const HitFilter ignore_first{[](const void*, uint32_t prim, float) { return prim == 0; }, nullptr};
+  const Ray to_first{{0.2f, 0.2f, 1.f}, {0, 0, -1}, 1.5f}, to_second{{0.2f, 0.2f, 1.f}, {0, 0, -1}, 2.5f};
+  CHECK(accel.occluded(to_first));
+  CHECK(!accel.occluded(to_first, &ignore_first));
+  CHECK(accel.occluded(to_second, &ignore_first));
+}
+
+TEST_CASE(visibility_is_blocked_by_a_wall_touching_the_target_surface) {
+  // Floor y = 0 as two unit squares split at x = 1, and a wall square x = 1 standing on the
+  // split: a floor point just past the wall is hidden from a point left of it, however close
+  // it lies to the wall.
+  const Material m{Lambertian{Color(0.5f)}, Color(0.f)};
+  const Scene scene({0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1,    // left floor  0-3
+                     1, 0, 0, 2, 0, 0, 2, 0, 1, 1, 0, 1,    // right floor 4-7
+                     1, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1},   // wall        8-11
+                    {0, 3, 2, 0, 2, 1,      // prims 0, 1 (normal +y)
+                     4, 7, 6, 4, 6, 5,      // prims 2, 3 (normal +y)
+                     8, 9, 10, 8, 10, 11},  // prims 4, 5
+                    {0, 0, 0, 0, 0, 0}, {m});
+  const Vec3 left(0.5f, 0.5f, 0.5f), right(1.5f, 0.5f, 0.5f);
+  for (const float dx : {1e-2f, 1e-3f, 1e-4f, 1e-5f}) {  // the old end margin (1e-4) leaked at 1e-5
+    const Vec3 target(1.f + dx, 0.f, 0.5f);  // on prim 2
+    CHECK(!scene.visible(left, Vec3(1, 0, 0), target, 2));
+    CHECK(scene.visible(right, Vec3(-1, 0, 0), target, 2));
+  }
+  CHECK(scene.visible(left, Vec3(1, 0, 0), Vec3(0.9f, 0.f, 0.5f), 1));
+}
