@@ -80,7 +80,9 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
 namespace {
 
 // Hits that are the target itself, or a triangle coplanar with it at the target point (a
-// neighbour sharing the point up to rounding), do not block.
+// neighbour sharing the point up to rounding), do not block. Any other surface does, however
+// close to the point: so a target point within rounding of an edge where another surface meets
+// the target's is ambiguous; callers keep their sample points off triangle edges.
 struct VisibilityQuery {
   const Scene* scene;
   uint32_t target;

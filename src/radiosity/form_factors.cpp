@@ -184,9 +184,13 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
               } else {
                 u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
               }
+              // Contracted towards the centroid by 1e-4: a target within rounding of the patch's
+              // edge could land on a surface meeting it there (see Scene::visible).
               const Point2 b = square_to_uniform_triangle(u);
-              const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
-                             patches.vertex(j, 2) * b.v;
+              constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
+              const float b1 = kContract * b.u + kToCentroid, b2 = kContract * b.v + kToCentroid;
+              const Vec3 y = patches.vertex(j, 0) * (1.f - b1 - b2) + patches.vertex(j, 1) * b1 +
+                             patches.vertex(j, 2) * b2;
               visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
             }
             local_rays += static_cast<uint64_t>(options.shadow_rays);
