@@ -280,20 +280,32 @@ class Scene:
         if self._compiled is None:
             from dualight import _core
 
-            if not self._meshes:
-                raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
-            offsets = np.cumsum([0] + [len(m.vertices) for m in self._meshes[:-1]])
-            positions = np.concatenate([m.vertices for m in self._meshes]).astype(np.float32)
-            triangles = np.concatenate(
-                [m.triangles + off for m, off in zip(self._meshes, offsets, strict=True)]
-            ).astype(np.uint32)
-            material_of = np.concatenate(
-                [np.full(len(m.triangles), i, np.uint32) for i, m in enumerate(self._meshes)]
-            )
+            positions, triangles, material_of = self.triangle_arrays()
             reflectance = np.array([m.reflectance for m in self._meshes], np.float32)
             emission = np.array([m.emission for m in self._meshes], np.float32)
-            self._compiled = _core.Scene(positions, triangles, material_of, reflectance, emission)
+            self._compiled = _core.Scene(
+                positions.astype(np.float32),
+                triangles.astype(np.uint32),
+                material_of.astype(np.uint32),
+                reflectance,
+                emission,
+            )
         return self._compiled
+
+    def triangle_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """All meshes as one triangle list, in the compiled scene's order: positions ``(V, 3)``,
+        triangles ``(T, 3)`` and the mesh index of each triangle ``(T,)``."""
+        if not self._meshes:
+            raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+        offsets = np.cumsum([0] + [len(m.vertices) for m in self._meshes[:-1]])
+        positions = np.concatenate([m.vertices for m in self._meshes])
+        triangles = np.concatenate(
+            [m.triangles + off for m, off in zip(self._meshes, offsets, strict=True)]
+        )
+        mesh_index = np.concatenate(
+            [np.full(len(m.triangles), i, np.int64) for i, m in enumerate(self._meshes)]
+        )
+        return positions, triangles, mesh_index
 
     def to_mitsuba(self, **kwargs: Any) -> dict[str, Any]:
         """A dict for ``mitsuba.load_dict`` describing this scene with matching conventions.

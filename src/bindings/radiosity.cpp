@@ -6,6 +6,7 @@
 #include "bindings/numpy_util.h"
 #include "geometry/camera_hits.h"
 #include "radiosity/form_factors.h"
+#include "radiosity/hierarchical.h"
 #include "radiosity/solve_direct.h"
 #include "radiosity/solve_gathering.h"
 #include "radiosity/solve_shooting.h"
@@ -208,6 +209,133 @@ void bind_radiosity(py::module_& m) {
           },
           py::arg("rhs"), py::arg("dual") = false)
       .def_property_readonly("factor_seconds", &DirectSolver::factor_seconds);
+
+  py::enum_<RefinementOracle>(m, "RefinementOracle")
+      .value("bf", RefinementOracle::BF)
+      .value("importance", RefinementOracle::Importance);
+
+  py::class_<HierarchicalOptions>(m, "HierarchicalOptions", "Options of HierarchicalSolver (keywords only).")
+      .def(py::init([](RefinementOracle oracle, double epsilon, double min_area, int shadow_rays, int sweeps,
+                       double tolerance, uint64_t seed, int threads) {
+             if (!(epsilon > 0.0)) throw py::value_error("epsilon must be > 0");
+             if (!(min_area >= 0.0)) throw py::value_error("min_area must be >= 0");
+             if (shadow_rays < 0) throw py::value_error("shadow_rays must be >= 0");
+             if (sweeps < 1) throw py::value_error("sweeps must be >= 1");
+             if (!(tolerance > 0.0)) throw py::value_error("tolerance must be > 0");
+             return HierarchicalOptions{oracle, epsilon, min_area, shadow_rays, sweeps, tolerance, seed, threads};
+           }),
+           py::kw_only(), py::arg("oracle") = RefinementOracle::Importance, py::arg("epsilon") = 1e-4,
+           py::arg("min_area") = 0.0, py::arg("shadow_rays") = 4, py::arg("sweeps") = 30,
+           py::arg("tolerance") = 1e-6, py::arg("seed") = 0, py::arg("threads") = 0)
+      .def_readonly("epsilon", &HierarchicalOptions::epsilon)
+      .def_readonly("min_area", &HierarchicalOptions::min_area);
+
+  py::class_<HierarchicalSolver>(m, "HierarchicalSolver",
+                                 "Hierarchical radiosity and importance (HSA91, SAS92); stepped.")
+      .def(py::init([](std::shared_ptr<const Scene> scene,
+                       const py::array_t<uint32_t, py::array::c_style | py::array::forcecast>& prim,
+                       const py::array_t<float, py::array::c_style | py::array::forcecast>& b1,
+                       const py::array_t<float, py::array::c_style | py::array::forcecast>& b2, double weight,
+                       const HierarchicalOptions& options) {
+             if (prim.size() != b1.size() || prim.size() != b2.size()) {
+               throw py::value_error("receiver arrays differ in length");
+             }
+             ReceiverSamples r{std::vector<uint32_t>(prim.data(), prim.data() + prim.size()),
+                               std::vector<float>(b1.data(), b1.data() + b1.size()),
+                               std::vector<float>(b2.data(), b2.data() + b2.size()), weight};
+             py::gil_scoped_release release;  // the initial linking is O(triangles^2)
+             return std::make_unique<HierarchicalSolver>(*scene, std::move(r), options);
+           }),
+           py::arg("scene"), py::arg("receiver_prim"), py::arg("receiver_b1"), py::arg("receiver_b2"),
+           py::arg("receiver_weight"), py::arg("options"), py::keep_alive<1, 2>())
+      .def(
+          "step",
+          [](HierarchicalSolver& solver, const py::object& progress) {
+            RenderControl control;
+            auto run = run_interruptible([&] { return solver.step(&control); }, control, progress);
+            if (run.keyboard_interrupt) {
+              PyErr_SetNone(PyExc_KeyboardInterrupt);
+              throw py::error_already_set();
+            }
+            const HierarchicalStep& st = run.result;
+            py::dict d;
+            d["iteration"] = st.iteration;
+            d["elements"] = st.elements;
+            d["leaves"] = st.leaves;
+            d["links"] = st.links;
+            d["links_refined"] = st.links_refined;
+            d["rays"] = st.rays;
+            d["memory_bytes"] = st.memory_bytes;
+            d["residual"] = st.residual;
+            d["seconds"] = st.seconds;
+            d["converged"] = st.converged;
+            return d;
+          },
+          py::arg("progress") = py::none())
+      .def("leaves",
+           [](const HierarchicalSolver& solver) {
+             const auto leaves = solver.leaves();
+             const auto n = static_cast<py::ssize_t>(leaves.size());
+             std::vector<float> v(9 * leaves.size());
+             std::vector<uint32_t> root(leaves.size());
+             std::vector<double> area(leaves.size()), B(3 * leaves.size()), W(3 * leaves.size()),
+                 E(3 * leaves.size()), R(leaves.size());
+             for (size_t k = 0; k < leaves.size(); ++k) {
+               const auto& l = leaves[k];
+               for (int c = 0; c < 3; ++c) {
+                 v[9 * k + 3 * c] = l.v[c].x;
+                 v[9 * k + 3 * c + 1] = l.v[c].y;
+                 v[9 * k + 3 * c + 2] = l.v[c].z;
+                 B[3 * k + c] = l.B[c];
+                 W[3 * k + c] = l.W[c];
+                 E[3 * k + c] = l.E[c];
+               }
+               root[k] = l.root;
+               area[k] = l.area;
+               R[k] = l.R;
+             }
+             py::dict d;
+             d["vertices"] = to_numpy(std::move(v), {n, 3, 3});
+             d["root"] = to_numpy(std::move(root), {n});
+             d["area"] = to_numpy(std::move(area), {n});
+             d["B"] = to_numpy(std::move(B), {n, 3});
+             d["W"] = to_numpy(std::move(W), {n, 3});
+             d["E"] = to_numpy(std::move(E), {n, 3});
+             d["R"] = to_numpy(std::move(R), {n});
+             return d;
+           })
+      .def("links",
+           [](const HierarchicalSolver& solver) {
+             const auto links = solver.links();
+             const auto n = static_cast<py::ssize_t>(links.size());
+             std::vector<uint32_t> rr(links.size()), sr(links.size());
+             std::vector<float> rc(3 * links.size()), sc(3 * links.size()), F(links.size());
+             for (size_t k = 0; k < links.size(); ++k) {
+               rr[k] = links[k].receiver_root;
+               sr[k] = links[k].source_root;
+               F[k] = links[k].F;
+               for (int c = 0; c < 3; ++c) {
+                 rc[3 * k + c] = links[k].receiver_centroid[c];
+                 sc[3 * k + c] = links[k].source_centroid[c];
+               }
+             }
+             py::dict d;
+             d["receiver_root"] = to_numpy(std::move(rr), {n});
+             d["source_root"] = to_numpy(std::move(sr), {n});
+             d["receiver_centroid"] = to_numpy(std::move(rc), {n, 3});
+             d["source_centroid"] = to_numpy(std::move(sc), {n, 3});
+             d["F"] = to_numpy(std::move(F), {n});
+             return d;
+           })
+      .def("measurements",
+           [](const HierarchicalSolver& solver) {
+             double p[3], d[3];
+             solver.measurements(p, d);
+             return py::make_tuple(std::array<double, 3>{p[0], p[1], p[2]}, std::array<double, 3>{d[0], d[1], d[2]});
+           })
+      .def_property_readonly("total_rays", &HierarchicalSolver::total_rays)
+      .def("link_coverage_error", &HierarchicalSolver::link_coverage_error, py::arg("only_facing_roots") = true,
+           "Largest |covered / area - 1| of any root as seen from any leaf (0: no source missed or doubled).");
 
   m.def(
       "trace_camera_hits",

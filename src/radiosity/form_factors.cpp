@@ -103,6 +103,11 @@ double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector
                                 static_cast<int>(polygon.size()));
 }
 
+double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 triangle[3]) {
+  const D3 poly[3] = {to_d3(triangle[0]), to_d3(triangle[1]), to_d3(triangle[2])};
+  return form_factor_to_polygon(to_d3(x), to_d3(n), poly, 3);
+}
+
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
                                FormFactorStats& stats) {
   if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");

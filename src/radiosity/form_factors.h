@@ -39,6 +39,9 @@ struct FormFactorStats {
 // whose front side (right-hand rule normal) must face x; 0 when x is behind or in its plane.
 double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon);
 
+// The same for a triangle, without allocating (hot in hierarchical refinement).
+double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 triangle[3]);
+
 // Every row i of F for the triangles of `patches` (one patch per triangle).
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
                                FormFactorStats& stats);

@@ -9,6 +9,7 @@ is shooting importance and vice versa.
     sol.render(mode="superposition")                  # where the work matters for the view
 """
 
+from dualight.radiosity.hierarchical import HierarchicalSolver, HierarchicalStep
 from dualight.radiosity.patches import PatchMesh
 from dualight.radiosity.solution import (
     ConvergenceWarning,
@@ -32,6 +33,8 @@ __all__ = [
     "ConvergenceWarning",
     "DirectSolver",
     "GaussSeidelSolver",
+    "HierarchicalSolver",
+    "HierarchicalStep",
     "JacobiSolver",
     "PatchMesh",
     "Solution",

@@ -100,9 +100,26 @@ class PatchMesh:
                 triangles.append((sub[None, :, :] + base).reshape(-1, 3))
                 mesh_index.append(np.full(len(sel) * len(sub), m, dtype=np.int64))
                 offset += len(sel) * len(bary)
-        self.vertices = np.concatenate(vertices)
-        self.triangles = np.concatenate(triangles)
-        self.mesh_index = np.concatenate(mesh_index)
+        self._set_triangles(
+            scene, np.concatenate(vertices), np.concatenate(triangles), np.concatenate(mesh_index)
+        )
+
+    @classmethod
+    def from_triangles(
+        cls, scene: Scene, vertices: np.ndarray, triangles: np.ndarray, mesh_index: np.ndarray
+    ) -> PatchMesh:
+        """Patches given directly (e.g. the leaves of a hierarchical solution)."""
+        patches = cls.__new__(cls)
+        patches.max_edge = patches.max_area = None
+        patches._set_triangles(scene, vertices, triangles, mesh_index)
+        return patches
+
+    def _set_triangles(
+        self, scene: Scene, vertices: np.ndarray, triangles: np.ndarray, mesh_index: np.ndarray
+    ) -> None:
+        self.vertices = np.asarray(vertices, dtype=np.float64)
+        self.triangles = np.asarray(triangles, dtype=np.int64)
+        self.mesh_index = np.asarray(mesh_index, dtype=np.int64)
         v = self.vertices[self.triangles]
         cross = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
         self.areas = 0.5 * np.linalg.norm(cross, axis=1)

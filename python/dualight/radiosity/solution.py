@@ -75,7 +75,7 @@ class Solution:
     I: np.ndarray | None  # noqa: E741 - the literature's name
     E: np.ndarray
     R: np.ndarray
-    form_factors: _core.FormFactors
+    form_factors: _core.FormFactors | None  # None for hierarchical solutions (links instead)
     camera: Camera
     method: str
     stats: dict[str, Any] = field(default_factory=dict)
@@ -281,14 +281,18 @@ def solve(
     progress: bool | Callable[[int, int], None] = False,
     patches: PatchMesh | None = None,
     form_factors_: tuple[_core.FormFactors, dict[str, Any]] | None = None,
+    oracle: str = "importance",
+    epsilon: float = 1e-3,
+    min_area: float | None = None,
 ) -> Solution:
     """Solve the radiosity system of a diffuse scene and, with ``importance``, its dual.
 
     Parameters
     ----------
     method:
-        ``"direct"`` (dense LU), ``"jacobi"``, ``"gauss_seidel"`` (gathering) or
-        ``"southwell"`` (shooting, progressive refinement).
+        ``"direct"`` (dense LU), ``"jacobi"``, ``"gauss_seidel"`` (gathering),
+        ``"southwell"`` (shooting, progressive refinement) or ``"hierarchical"`` (links
+        between element trees, see :mod:`dualight.radiosity.hierarchical`).
     max_edge, max_area:
         Patch size (see :class:`PatchMesh`); by default 1/10 of the scene's largest extent.
     tol, max_iter:
@@ -305,9 +309,37 @@ def solve(
         Form-factor accuracy (see :func:`form_factors`).
     patches, form_factors_:
         Reuse a patch mesh and its form factors (for comparing methods on one system).
+    oracle, epsilon, min_area:
+        Hierarchical only: refinement oracle (``"importance"`` or ``"bf"``), its relative
+        threshold, and the smallest element area; ``max_iter`` bounds the refine-and-solve
+        iterations and ``tol`` the change per sweep.
     """
+    if method == "hierarchical":
+        from dualight.radiosity.hierarchical import HierarchicalSolver
+
+        solver = HierarchicalSolver(
+            scene,
+            camera=camera,
+            window=window,
+            oracle=oracle,  # type: ignore[arg-type]
+            epsilon=epsilon,
+            min_area=min_area,
+            shadow_rays=shadow_rays,
+            tolerance=tol,
+            seed=seed,
+            threads=threads or 0,
+        )
+        solver.solve(max_iter=min(max_iter, 100))
+        if not solver.converged:
+            warnings.warn(
+                f"hierarchical refinement still refining after {len(solver.history)} steps",
+                ConvergenceWarning,
+                stacklevel=2,
+            )
+        return solver.solution()
     if method not in SOLVERS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(SOLVERS)}")
+        valid = ", ".join([*SOLVERS, "hierarchical"])
+        raise ValueError(f"unknown method {method!r}; choose one of {valid}")
     cam = camera or scene.camera
     if cam is None:
         raise ValueError("the receiver needs a camera: pass camera= or give the scene one")

@@ -1,0 +1,426 @@
+#include "radiosity/hierarchical.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "radiosity/form_factors.h"
+
+namespace dualight {
+
+namespace {
+
+constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
+
+Vec3 midpoint(const Vec3& a, const Vec3& b) { return (a + b) * 0.5f; }
+
+Vec3 point_in(const Vec3 v[3], float b1, float b2) { return v[0] * (1.f - b1 - b2) + v[1] * b1 + v[2] * b2; }
+
+// Groups link indices by a key (receiver or source) into CSR-like offsets.
+void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>& key,
+                 std::vector<uint32_t>& offsets, std::vector<uint32_t>& order) {
+  offsets.assign(n_elements + 1, 0);
+  for (size_t l = 0; l < n_links; ++l) ++offsets[key[l] + 1];
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  order.resize(n_links);
+  std::vector<uint32_t> next(offsets.begin(), offsets.end() - 1);
+  for (size_t l = 0; l < n_links; ++l) order[next[key[l]]++] = static_cast<uint32_t>(l);
+}
+
+}  // namespace
+
+HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options)
+    : scene_(scene), receiver_(std::move(receiver)), options_(options) {
+  if (!(options_.epsilon > 0.0)) throw std::invalid_argument("epsilon must be > 0");
+  if (options_.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
+  if (options_.sweeps < 1) throw std::invalid_argument("sweeps must be >= 1");
+  roots_ = static_cast<uint32_t>(scene.triangle_count());
+  double largest = 0.0;
+  elements_.reserve(roots_);
+  for (uint32_t t = 0; t < roots_; ++t) {
+    Element e;
+    for (int c = 0; c < 3; ++c) e.v[c] = scene.vertex(t, c);
+    e.normal = scene.normal(t);
+    e.area = scene.area(t);
+    e.root = t;
+    const Material& m = scene.material(t);
+    const Color rho = std::get<Lambertian>(m.bsdf).albedo;
+    for (int c = 0; c < 3; ++c) {
+      e.rho[c] = rho[c];
+      e.E[c] = kPi * m.emission[c];  // emitted radiosity
+      emitted_power_ += e.area * e.E[c] * kLuminance[c];
+      emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminance[0] + e.E[1] * kLuminance[1] +
+                                                                   e.E[2] * kLuminance[2]);
+    }
+    largest = std::max(largest, e.area);
+    elements_.push_back(e);
+  }
+  if (options_.min_area <= 0.0) options_.min_area = 1e-4 * largest;
+  for (size_t k = 0; k < receiver_.prim.size(); ++k) {
+    if (receiver_.prim[k] >= roots_) throw std::invalid_argument("receiver sample names a missing triangle");
+  }
+
+  // Initial links between every pair of input triangles that face each other and see each other.
+  std::vector<std::vector<Link>> per_root(roots_);
+  std::atomic<uint64_t> rays{0};
+  parallel_for_each_index(options_.threads, roots_, [&](size_t i) {
+    uint64_t local = 0;
+    for (uint32_t j = 0; j < roots_; ++j) {
+      if (j == i || !facing(elements_[i], elements_[j])) continue;
+      const Link l = make_link(static_cast<uint32_t>(i), j, local);
+      if (l.F > 0.f || l.F_oracle > 0.f) per_root[i].push_back(l);
+    }
+    rays.fetch_add(local);
+  });
+  rays_ += rays.load();
+  for (auto& v : per_root) links_.insert(links_.end(), v.begin(), v.end());
+  assign_receiver();
+}
+
+bool HierarchicalSolver::facing(const Element& a, const Element& b) const {
+  // Some corner of each lies strictly in front of the other's plane.
+  auto in_front = [](const Element& plane, const Element& other) {
+    for (const Vec3& p : other.v) {
+      if (dot(plane.normal, p - plane.v[0]) > 0.f) return true;
+    }
+    return false;
+  };
+  return in_front(a, b) && in_front(b, a);
+}
+
+HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const {
+  const Element& r = elements_[receiver];
+  const Element& s = elements_[source];
+  // Receiver-side 7-point rule (degree 5, Radon), exact contour integral over the source. Lower
+  // order rules underestimate the kernel's peak where elements meet at an edge, and the deficit
+  // (dark corners) shrinks only slowly with refinement.
+  static const double a = (6.0 - std::sqrt(15.0)) / 21.0, b = (6.0 + std::sqrt(15.0)) / 21.0;
+  static const double wa = (155.0 - std::sqrt(15.0)) / 1200.0, wb = (155.0 + std::sqrt(15.0)) / 1200.0;
+  static const double kRule[7][3] = {{1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, wa}, {a, 1 - 2 * a, wa},
+                                     {1 - 2 * a, a, wa},           {b, b, wb}, {b, 1 - 2 * b, wb},
+                                     {1 - 2 * b, b, wb}};
+  double F = 0.0;
+  for (const auto& q : kRule) {
+    F += q[2] * point_triangle_form_factor(point_in(r.v, static_cast<float>(q[0]), static_cast<float>(q[1])),
+                                           r.normal, s.v);
+  }
+  Link link{receiver, source, static_cast<float>(F), static_cast<float>(F)};
+  if (!(F > 0.0) || options_.shadow_rays == 0) return link;
+  Pcg32 rng(hash_combine(options_.seed, (static_cast<uint64_t>(receiver) << 32) | source), iteration_);
+  const int n = options_.shadow_rays;
+  auto visible_fraction = [&] {
+    int visible = 0;
+    for (int k = 0; k < n; ++k) {
+      // Stratified in the first dimension; targets kept off edges (see Scene::visible).
+      const Point2 a = square_to_uniform_triangle({(k + rng.next_float()) / n, rng.next_float()});
+      const Point2 b = square_to_uniform_triangle({(k + rng.next_float()) / n, rng.next_float()});
+      constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
+      const Vec3 x = point_in(r.v, kContract * a.u + kToCentroid, kContract * a.v + kToCentroid);
+      const Vec3 y = point_in(s.v, kContract * b.u + kToCentroid, kContract * b.v + kToCentroid);
+      visible += scene_.visible(x, r.normal, y, s.root) ? 1 : 0;
+    }
+    return static_cast<double>(visible) / n;
+  };
+  link.F = static_cast<float>(F * visible_fraction());
+  link.F_oracle = static_cast<float>(F * visible_fraction());
+  rays += 2 * static_cast<uint64_t>(n);
+  return link;
+}
+
+void HierarchicalSolver::subdivide(uint32_t e) {
+  if (elements_[e].first_child >= 0) return;
+  const Element parent = elements_[e];
+  const Vec3 m01 = midpoint(parent.v[0], parent.v[1]), m12 = midpoint(parent.v[1], parent.v[2]),
+             m20 = midpoint(parent.v[2], parent.v[0]);
+  const Vec3 corners[4][3] = {
+      {parent.v[0], m01, m20}, {m01, parent.v[1], m12}, {m20, m12, parent.v[2]}, {m01, m12, m20}};
+  elements_[e].first_child = static_cast<int32_t>(elements_.size());
+  for (const auto& c : corners) {
+    Element child = parent;
+    std::copy(c, c + 3, child.v);
+    child.area = parent.area / 4.0;
+    child.first_child = -1;
+    child.parent = static_cast<int32_t>(e);
+    std::fill(child.Bg, child.Bg + 3, 0.0);
+    std::fill(child.Wg, child.Wg + 3, 0.0);
+    child.R = 0.0;
+    elements_.push_back(child);
+  }
+}
+
+uint32_t HierarchicalSolver::leaf_at(uint32_t root, float b1, float b2) const {
+  uint32_t e = root;
+  float b0 = 1.f - b1 - b2;
+  while (elements_[e].first_child >= 0) {
+    const uint32_t first = static_cast<uint32_t>(elements_[e].first_child);
+    float c0, c1, c2;
+    uint32_t child;
+    if (b0 >= 0.5f) {
+      child = first;
+      c1 = 2 * b1, c2 = 2 * b2, c0 = 1 - c1 - c2;
+    } else if (b1 >= 0.5f) {
+      child = first + 1;
+      c0 = 2 * b0, c2 = 2 * b2, c1 = 1 - c0 - c2;
+    } else if (b2 >= 0.5f) {
+      child = first + 2;
+      c0 = 2 * b0, c1 = 2 * b1, c2 = 1 - c0 - c1;
+    } else {  // the middle triangle (m01, m12, m20)
+      child = first + 3;
+      c0 = 1 - 2 * b2, c1 = 1 - 2 * b0, c2 = 1 - 2 * b1;
+    }
+    e = child, b0 = c0, b1 = c1, b2 = c2;
+  }
+  return e;
+}
+
+void HierarchicalSolver::assign_receiver() {
+  for (Element& e : elements_) e.R = 0.0;
+  for (size_t k = 0; k < receiver_.prim.size(); ++k) {
+    elements_[leaf_at(receiver_.prim[k], receiver_.b1[k], receiver_.b2[k])].R += receiver_.weight;
+  }
+  for (Element& e : elements_) e.R /= e.area;  // density
+}
+
+void HierarchicalSolver::push_pull_radiosity(uint32_t e, const double down[3]) {
+  Element& el = elements_[e];
+  const double up[3] = {el.Bg[0] + down[0], el.Bg[1] + down[1], el.Bg[2] + down[2]};
+  if (el.first_child < 0) {
+    for (int c = 0; c < 3; ++c) el.B[c] = el.E[c] + up[c];
+    return;
+  }
+  double sum[3] = {0, 0, 0};
+  for (int k = 0; k < 4; ++k) {
+    const uint32_t child = static_cast<uint32_t>(elements_[e].first_child + k);
+    push_pull_radiosity(child, up);
+    for (int c = 0; c < 3; ++c) sum[c] += elements_[child].B[c] * elements_[child].area;
+  }
+  Element& again = elements_[e];
+  for (int c = 0; c < 3; ++c) again.B[c] = sum[c] / again.area;
+}
+
+void HierarchicalSolver::push_pull_importance(uint32_t e, const double down[3]) {
+  Element& el = elements_[e];
+  const double up[3] = {el.Wg[0] + down[0], el.Wg[1] + down[1], el.Wg[2] + down[2]};
+  if (el.first_child < 0) {
+    for (int c = 0; c < 3; ++c) el.W[c] = el.R + up[c];
+    return;
+  }
+  double sum[3] = {0, 0, 0};
+  for (int k = 0; k < 4; ++k) {
+    const uint32_t child = static_cast<uint32_t>(elements_[e].first_child + k);
+    push_pull_importance(child, up);
+    for (int c = 0; c < 3; ++c) sum[c] += elements_[child].W[c] * elements_[child].area;
+  }
+  Element& again = elements_[e];
+  for (int c = 0; c < 3; ++c) again.W[c] = sum[c] / again.area;
+}
+
+HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
+  const auto t0 = std::chrono::steady_clock::now();
+  HierarchicalStep st;
+  const uint64_t rays_before = rays_;
+
+  // Refine (from the second step on: the oracles need a solution).
+  if (iteration_ > 0) {
+    double primal[3], dual[3];
+    measurements(primal, dual);
+    const double measurement = primal[0] + primal[1] + primal[2];
+    std::vector<uint32_t> to_refine;
+    for (uint32_t l = 0; l < links_.size(); ++l) {
+      const Link& link = links_[l];
+      const Element& r = elements_[link.receiver];
+      const Element& s = elements_[link.source];
+      // Both directional form factors, as in [HSA91]: a small source next to a large receiver
+      // has a small F_ij but makes the receiver's irradiance vary strongly across it (F_ji is
+      // large), which averaging over the receiver would miss.
+      const double F_max = std::max<double>(link.F_oracle, link.F_oracle * r.area / s.area);
+      double q = 0.0, threshold = 0.0;
+      if (options_.oracle == RefinementOracle::BF) {
+        // Bound on the radiosity error this link leaves at the receiver's points.
+        for (int c = 0; c < 3; ++c) q += kLuminance[c] * F_max * s.B[c];
+        threshold = options_.epsilon * emitted_radiosity_max_;
+      } else {
+        // That error weighted by how much the receiver matters for the view, plus the importance
+        // error it leaves at the source weighted by the source's radiosity [SAS92]: both are
+        // F_max * rho_i * W_i * B_j times an area.
+        for (int c = 0; c < 3; ++c) q += F_max * r.rho[c] * r.W[c] * s.B[c] * std::max(r.area, s.area);
+        threshold = options_.epsilon * measurement;
+      }
+      if (q > threshold && std::max(r.area, s.area) / 4.0 >= options_.min_area) to_refine.push_back(l);
+    }
+    // Split the larger end of each flagged link, then link its children in its place.
+    std::vector<Link> kept;
+    std::vector<std::pair<uint32_t, uint32_t>> pending;  // (receiver, source) of new links
+    std::vector<char> refine(links_.size(), 0);
+    for (const uint32_t l : to_refine) refine[l] = 1;
+    for (uint32_t l = 0; l < links_.size(); ++l) {
+      const Link link = links_[l];
+      if (!refine[l]) {
+        kept.push_back(link);
+        continue;
+      }
+      const bool split_receiver = elements_[link.receiver].area >= elements_[link.source].area;
+      const uint32_t split = split_receiver ? link.receiver : link.source;
+      subdivide(split);
+      const uint32_t first = static_cast<uint32_t>(elements_[split].first_child);
+      for (uint32_t k = 0; k < 4; ++k) {
+        pending.emplace_back(split_receiver ? first + k : link.receiver, split_receiver ? link.source : first + k);
+      }
+    }
+    std::vector<Link> created(pending.size());
+    std::atomic<uint64_t> rays{0};
+    constexpr size_t kChunk = 256;
+    parallel_for_each_index(options_.threads, (pending.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
+      uint64_t local = 0;
+      for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
+        const auto [r, s] = pending[k];
+        created[k] = facing(elements_[r], elements_[s]) ? make_link(r, s, local) : Link{r, s, 0.f, 0.f};
+      }
+      rays.fetch_add(local);
+    });
+    rays_ += rays.load();
+    for (const Link& l : created) {
+      // A link the oracle sees as occluded is never refined: dropping it when the transport
+      // estimate is 0 too loses nothing.
+      if (l.F > 0.f || l.F_oracle > 0.f) kept.push_back(l);
+    }
+    links_.swap(kept);
+    st.links_refined = to_refine.size();
+    if (!to_refine.empty()) assign_receiver();
+  }
+
+  // Solve both systems on the current links: gather, push-pull, repeat.
+  const size_t n_links = links_.size();
+  std::vector<uint32_t> by_receiver(n_links), by_source(n_links);
+  for (size_t l = 0; l < n_links; ++l) {
+    by_receiver[l] = links_[l].receiver;
+    by_source[l] = links_[l].source;
+  }
+  std::vector<uint32_t> r_offsets, r_order, s_offsets, s_order;
+  group_links(elements_.size(), n_links, by_receiver, r_offsets, r_order);
+  group_links(elements_.size(), n_links, by_source, s_offsets, s_order);
+  const double zero[3] = {0, 0, 0};
+  double change = 0.0;
+  for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
+    if (control != nullptr && control->cancelled()) break;
+    std::vector<double> before;
+    before.reserve(elements_.size() * 3);
+    for (const Element& e : elements_) before.insert(before.end(), e.B, e.B + 3);
+    parallel_for_each_index(options_.threads, (elements_.size() + 1023) / 1024, [&](size_t chunk) {
+      for (size_t e = chunk * 1024; e < std::min(elements_.size(), (chunk + 1) * 1024); ++e) {
+        Element& el = elements_[e];
+        double bg[3] = {0, 0, 0}, wg[3] = {0, 0, 0};
+        for (uint32_t k = r_offsets[e]; k < r_offsets[e + 1]; ++k) {  // radiosity arrives at e
+          const Link& link = links_[r_order[k]];
+          const Element& s = elements_[link.source];
+          for (int c = 0; c < 3; ++c) bg[c] += el.rho[c] * link.F * s.B[c];
+        }
+        for (uint32_t k = s_offsets[e]; k < s_offsets[e + 1]; ++k) {  // importance arrives at e
+          const Link& link = links_[s_order[k]];
+          const Element& r = elements_[link.receiver];
+          const double F_reverse = r.area * link.F / el.area;
+          for (int c = 0; c < 3; ++c) wg[c] += r.rho[c] * F_reverse * r.W[c];
+        }
+        std::copy(bg, bg + 3, el.Bg);
+        std::copy(wg, wg + 3, el.Wg);
+      }
+    });
+    for (uint32_t root = 0; root < roots_; ++root) {
+      push_pull_radiosity(root, zero);
+      push_pull_importance(root, zero);
+    }
+    change = leaf_change(before);
+    if (change <= options_.tolerance) break;
+  }
+
+  ++iteration_;
+  st.iteration = iteration_;
+  st.elements = elements_.size();
+  st.leaves = static_cast<uint64_t>(std::count_if(elements_.begin(), elements_.end(),
+                                                  [](const Element& e) { return e.first_child < 0; }));
+  st.links = links_.size();
+  st.rays = rays_ - rays_before;
+  st.memory_bytes = elements_.size() * sizeof(Element) + links_.capacity() * sizeof(Link);
+  st.residual = change;
+  st.converged = iteration_ > 1 && st.links_refined == 0;
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return st;
+}
+
+double HierarchicalSolver::leaf_change(const std::vector<double>& before) const {
+  double worst = 0.0, scale = 0.0;
+  for (size_t e = 0; e < elements_.size(); ++e) {
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(elements_[e].B[c] - before[3 * e + c]));
+      scale = std::max(scale, std::abs(elements_[e].B[c]));
+    }
+  }
+  return scale > 0.0 ? worst / scale : worst;
+}
+
+void HierarchicalSolver::measurements(double primal[3], double dual[3]) const {
+  for (int c = 0; c < 3; ++c) primal[c] = dual[c] = 0.0;
+  for (const Element& e : elements_) {
+    if (e.first_child >= 0) continue;
+    for (int c = 0; c < 3; ++c) {
+      primal[c] += e.area * e.R * e.B[c];
+      dual[c] += e.area * e.W[c] * e.E[c];
+    }
+  }
+}
+
+double HierarchicalSolver::link_coverage_error(bool only_facing_roots) const {
+  std::vector<std::vector<uint32_t>> incoming(elements_.size());
+  for (const Link& l : links_) incoming[l.receiver].push_back(l.source);
+  double worst = 0.0;
+  std::vector<double> covered(roots_);
+  for (uint32_t e = 0; e < elements_.size(); ++e) {
+    if (elements_[e].first_child >= 0) continue;
+    std::fill(covered.begin(), covered.end(), 0.0);
+    for (int32_t a = static_cast<int32_t>(e); a >= 0; a = elements_[a].parent) {
+      for (const uint32_t src : incoming[a]) covered[elements_[src].root] += elements_[src].area;
+    }
+    for (uint32_t r = 0; r < roots_; ++r) {
+      if (r == elements_[e].root) continue;
+      if (only_facing_roots && !facing(elements_[elements_[e].root], elements_[r])) continue;
+      worst = std::max(worst, std::abs(covered[r] / elements_[r].area - 1.0));
+    }
+  }
+  return worst;
+}
+
+std::vector<HierarchicalSolver::Leaf> HierarchicalSolver::leaves() const {
+  std::vector<Leaf> out;
+  for (const Element& e : elements_) {
+    if (e.first_child >= 0) continue;
+    Leaf l;
+    std::copy(e.v, e.v + 3, l.v);
+    l.root = e.root;
+    l.area = e.area;
+    std::copy(e.B, e.B + 3, l.B);
+    std::copy(e.W, e.W + 3, l.W);
+    std::copy(e.E, e.E + 3, l.E);
+    l.R = e.R;
+    out.push_back(l);
+  }
+  return out;
+}
+
+std::vector<HierarchicalSolver::LinkView> HierarchicalSolver::links() const {
+  std::vector<LinkView> out;
+  out.reserve(links_.size());
+  for (const Link& l : links_) {
+    const Element& r = elements_[l.receiver];
+    const Element& s = elements_[l.source];
+    out.push_back({r.root, s.root, (r.v[0] + r.v[1] + r.v[2]) / 3.f, (s.v[0] + s.v[1] + s.v[2]) / 3.f, l.F});
+  }
+  return out;
+}
+
+}  // namespace dualight

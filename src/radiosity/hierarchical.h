@@ -1,0 +1,125 @@
+// Hierarchical radiosity with links between elements of per-triangle subdivision trees
+// [Hanrahan, Salzman and Aupperle 1991], refined by the BF oracle or by the importance-driven
+// oracle of [Smits, Arvo and Salesin 1992], which solves radiosity and importance together and
+// refines a link only where its energy transfer matters for the view.
+//
+// A gather link (i <- j) carries F_ij, the form factor from receiver i to source j (exact contour
+// integral at 3 points of i times a visibility fraction from stratified rays). Radiosity flows
+// along it, B_i += rho_i F_ij B_j; importance density flows back, W_j += rho_i F_ji W_i with
+// F_ji = A_i F_ij / A_j, which makes the importance system the exact adjoint (area inner
+// product) of the radiosity system on any hierarchy: <R, B>_A = <W, E>_A to rounding.
+// Push-pull moves gathered quantities down to leaves and averages them up [HSA91 sec. 4].
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/render_control.h"
+#include "geometry/scene.h"
+
+namespace dualight {
+
+enum class RefinementOracle { BF, Importance };
+
+struct HierarchicalOptions {
+  RefinementOracle oracle = RefinementOracle::Importance;
+  double epsilon = 1e-3;    // relative: of the brightest emission (BF) or of the measurement (importance)
+  double min_area = 0.0;    // elements are not split below this area (0: 1e-4 of the largest input)
+  int shadow_rays = 4;      // per link
+  int sweeps = 30;          // Gauss-Seidel sweeps per step at most
+  double tolerance = 1e-6;  // relative change per sweep that ends a step's sweeps
+  uint64_t seed = 0;
+  int threads = 0;
+};
+
+struct HierarchicalStep {
+  uint64_t iteration = 0;
+  uint64_t elements = 0, leaves = 0, links = 0, links_refined = 0, rays = 0;
+  uint64_t memory_bytes = 0;
+  double residual = 0.0;  // relative change of B in the last sweep
+  double seconds = 0.0;
+  bool converged = false;  // nothing was refined
+};
+
+// Camera samples for the receiver: root triangle, barycentrics, weight (front-facing hits only).
+struct ReceiverSamples {
+  std::vector<uint32_t> prim;
+  std::vector<float> b1, b2;
+  double weight = 0.0;  // each sample's share of the measurement (1 / (count * pi))
+};
+
+class HierarchicalSolver {
+ public:
+  // `scene` provides the input triangles (the roots) and their materials.
+  HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options);
+
+  // One refine-and-solve iteration: refine every link the oracle flags (none on the first call),
+  // then Gauss-Seidel sweeps with push-pull for radiosity and for importance.
+  HierarchicalStep step(RenderControl* control = nullptr);
+
+  struct Leaf {
+    Vec3 v[3];
+    uint32_t root;
+    double area;
+    double B[3], W[3], E[3], R;  // W, R: importance and receiver per unit area
+  };
+  std::vector<Leaf> leaves() const;
+  struct LinkView {
+    uint32_t receiver_root, source_root;
+    Vec3 receiver_centroid, source_centroid;
+    float F;
+  };
+  std::vector<LinkView> links() const;
+  // <R, B>_A and <W, E>_A per channel.
+  void measurements(double primal[3], double dual[3]) const;
+  uint64_t total_rays() const { return rays_; }
+  // For tests: over all leaves and all other roots, the largest |covered area / root area - 1|,
+  // where "covered" sums the areas of that root's elements linked (before visibility culling) to
+  // the leaf or its ancestors. 0 means every source is seen exactly once from every leaf.
+  double link_coverage_error(bool only_facing_roots) const;
+
+ private:
+  struct Element {
+    Vec3 v[3];
+    Vec3 normal;
+    double area;
+    uint32_t root;
+    int32_t first_child = -1;  // four children, contiguous
+    int32_t parent = -1;
+    double rho[3], E[3];
+    double B[3] = {0, 0, 0}, Bg[3] = {0, 0, 0};  // radiosity, gathered at this level
+    double W[3] = {0, 0, 0}, Wg[3] = {0, 0, 0};  // importance density, gathered at this level
+    double R = 0.0;                               // receiver density (leaves)
+  };
+  // Two independent visibility estimates: one for the transport, one for the refinement
+  // decisions. With a single one, links whose rays happened to be blocked would never be
+  // refined and keep their underestimate while lucky ones get re-sampled: a bias towards too
+  // little light that grows with refinement.
+  struct Link {
+    uint32_t receiver, source;
+    float F;         // receiver -> source form factor with the transport visibility estimate
+    float F_oracle;  // the same with an independent visibility estimate, for the oracle only
+  };
+
+  Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const;
+  bool facing(const Element& a, const Element& b) const;
+  void subdivide(uint32_t e);
+  void gather_sweep_radiosity();
+  void gather_sweep_importance();
+  void push_pull_radiosity(uint32_t e, const double down[3]);
+  void push_pull_importance(uint32_t e, const double down[3]);
+  double leaf_change(const std::vector<double>& before) const;
+  void assign_receiver();
+  uint32_t leaf_at(uint32_t root, float b1, float b2) const;
+
+  const Scene& scene_;
+  ReceiverSamples receiver_;
+  HierarchicalOptions options_;
+  std::vector<Element> elements_;
+  std::vector<Link> links_;
+  uint32_t roots_;
+  uint64_t iteration_ = 0, rays_ = 0;
+  double emitted_power_ = 0.0;
+  double emitted_radiosity_max_ = 0.0;  // luminance of the brightest emitter's radiosity
+};
+
+}  // namespace dualight
