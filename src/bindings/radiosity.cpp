@@ -225,7 +225,7 @@ void bind_radiosity(py::module_& m) {
              return HierarchicalOptions{oracle, epsilon, min_area, shadow_rays, sweeps, tolerance, seed, threads};
            }),
            py::kw_only(), py::arg("oracle") = RefinementOracle::Importance, py::arg("epsilon") = 1e-4,
-           py::arg("min_area") = 0.0, py::arg("shadow_rays") = 4, py::arg("sweeps") = 30,
+           py::arg("min_area") = 0.0, py::arg("shadow_rays") = 1, py::arg("sweeps") = 30,
            py::arg("tolerance") = 1e-6, py::arg("seed") = 0, py::arg("threads") = 0)
       .def_readonly("epsilon", &HierarchicalOptions::epsilon)
       .def_readonly("min_area", &HierarchicalOptions::min_area);
@@ -279,7 +279,7 @@ void bind_radiosity(py::module_& m) {
              std::vector<float> v(9 * leaves.size());
              std::vector<uint32_t> root(leaves.size());
              std::vector<double> area(leaves.size()), B(3 * leaves.size()), W(3 * leaves.size()),
-                 E(3 * leaves.size()), R(leaves.size());
+                 E(3 * leaves.size()), R(leaves.size()), density(leaves.size());
              for (size_t k = 0; k < leaves.size(); ++k) {
                const auto& l = leaves[k];
                for (int c = 0; c < 3; ++c) {
@@ -293,6 +293,7 @@ void bind_radiosity(py::module_& m) {
                root[k] = l.root;
                area[k] = l.area;
                R[k] = l.R;
+               density[k] = l.link_density;
              }
              py::dict d;
              d["vertices"] = to_numpy(std::move(v), {n, 3, 3});
@@ -302,6 +303,7 @@ void bind_radiosity(py::module_& m) {
              d["W"] = to_numpy(std::move(W), {n, 3});
              d["E"] = to_numpy(std::move(E), {n, 3});
              d["R"] = to_numpy(std::move(R), {n});
+             d["link_density"] = to_numpy(std::move(density), {n});
              return d;
            })
       .def("links",

@@ -97,39 +97,46 @@ bool HierarchicalSolver::facing(const Element& a, const Element& b) const {
 HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const {
   const Element& r = elements_[receiver];
   const Element& s = elements_[source];
-  // Receiver-side 7-point rule (degree 5, Radon), exact contour integral over the source. Lower
-  // order rules underestimate the kernel's peak where elements meet at an edge, and the deficit
-  // (dark corners) shrinks only slowly with refinement.
+  // Receiver-side 7-point rule (degree 5, Radon), exact contour integral over the source, each
+  // point weighted by its own visibility of the source: kernel and visibility are correlated
+  // across a partly hidden pair (a doorway), so F_unoccluded times one visible fraction for the
+  // whole pair is biased.
   static const double a = (6.0 - std::sqrt(15.0)) / 21.0, b = (6.0 + std::sqrt(15.0)) / 21.0;
   static const double wa = (155.0 - std::sqrt(15.0)) / 1200.0, wb = (155.0 + std::sqrt(15.0)) / 1200.0;
   static const double kRule[7][3] = {{1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, wa}, {a, 1 - 2 * a, wa},
                                      {1 - 2 * a, a, wa},           {b, b, wb}, {b, 1 - 2 * b, wb},
                                      {1 - 2 * b, b, wb}};
+  Vec3 points[7];
+  double kernel[7];
   double F = 0.0;
-  for (const auto& q : kRule) {
-    F += q[2] * point_triangle_form_factor(point_in(r.v, static_cast<float>(q[0]), static_cast<float>(q[1])),
-                                           r.normal, s.v);
+  for (int k = 0; k < 7; ++k) {
+    points[k] = point_in(r.v, static_cast<float>(kRule[k][0]), static_cast<float>(kRule[k][1]));
+    kernel[k] = kRule[k][2] * point_triangle_form_factor(points[k], r.normal, s.v);
+    F += kernel[k];
   }
-  Link link{receiver, source, static_cast<float>(F), static_cast<float>(F)};
+  Link link{receiver, source, static_cast<float>(F), static_cast<float>(F), static_cast<float>(F)};
   if (!(F > 0.0) || options_.shadow_rays == 0) return link;
   Pcg32 rng(hash_combine(options_.seed, (static_cast<uint64_t>(receiver) << 32) | source), iteration_);
-  const int n = options_.shadow_rays;
-  auto visible_fraction = [&] {
-    int visible = 0;
-    for (int k = 0; k < n; ++k) {
-      // Stratified in the first dimension; targets kept off edges (see Scene::visible).
-      const Point2 a = square_to_uniform_triangle({(k + rng.next_float()) / n, rng.next_float()});
-      const Point2 b = square_to_uniform_triangle({(k + rng.next_float()) / n, rng.next_float()});
-      constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
-      const Vec3 x = point_in(r.v, kContract * a.u + kToCentroid, kContract * a.v + kToCentroid);
-      const Vec3 y = point_in(s.v, kContract * b.u + kToCentroid, kContract * b.v + kToCentroid);
-      visible += scene_.visible(x, r.normal, y, s.root) ? 1 : 0;
+  const int n = options_.shadow_rays;  // per receiver point
+  auto visible_estimate = [&] {
+    double estimate = 0.0;
+    for (int k = 0; k < 7; ++k) {
+      if (!(kernel[k] > 0.0)) continue;
+      int visible = 0;
+      for (int m = 0; m < n; ++m) {
+        // Stratified source points, kept off the source's edges (see Scene::visible).
+        const Point2 u = square_to_uniform_triangle({(m + rng.next_float()) / n, rng.next_float()});
+        constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
+        const Vec3 y = point_in(s.v, kContract * u.u + kToCentroid, kContract * u.v + kToCentroid);
+        visible += scene_.visible(points[k], r.normal, y, s.root) ? 1 : 0;
+      }
+      rays += static_cast<uint64_t>(n);
+      estimate += kernel[k] * visible / n;
     }
-    return static_cast<double>(visible) / n;
+    return estimate;
   };
-  link.F = static_cast<float>(F * visible_fraction());
-  link.F_oracle = static_cast<float>(F * visible_fraction());
-  rays += 2 * static_cast<uint64_t>(n);
+  link.F = static_cast<float>(visible_estimate());
+  link.F_oracle = static_cast<float>(visible_estimate());
   return link;
 }
 
@@ -239,7 +246,12 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
       // Both directional form factors, as in [HSA91]: a small source next to a large receiver
       // has a small F_ij but makes the receiver's irradiance vary strongly across it (F_ji is
       // large), which averaging over the receiver would miss.
-      const double F_max = std::max<double>(link.F_oracle, link.F_oracle * r.area / s.area);
+      // A partly visible link (a shadow boundary crosses it) is judged by its unoccluded form
+      // factor: its visibility varies across the elements, and sampling the source uniformly
+      // by area misses how that variation correlates with the kernel [HSA91, SAS92].
+      const bool partial = link.F_oracle > 0.f && link.F_oracle < 0.999f * link.F_unoccluded;
+      const double F_judged = partial ? link.F_unoccluded : link.F_oracle;
+      const double F_max = std::max<double>(F_judged, F_judged * r.area / s.area);
       double q = 0.0, threshold = 0.0;
       if (options_.oracle == RefinementOracle::BF) {
         // Bound on the radiosity error this link leaves at the receiver's points.
@@ -280,7 +292,7 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
       uint64_t local = 0;
       for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
         const auto [r, s] = pending[k];
-        created[k] = facing(elements_[r], elements_[s]) ? make_link(r, s, local) : Link{r, s, 0.f, 0.f};
+        created[k] = facing(elements_[r], elements_[s]) ? make_link(r, s, local) : Link{r, s, 0.f, 0.f, 0.f};
       }
       rays.fetch_add(local);
     });
@@ -396,8 +408,11 @@ double HierarchicalSolver::link_coverage_error(bool only_facing_roots) const {
 }
 
 std::vector<HierarchicalSolver::Leaf> HierarchicalSolver::leaves() const {
+  std::vector<uint32_t> incoming(elements_.size(), 0);
+  for (const Link& l : links_) ++incoming[l.receiver];
   std::vector<Leaf> out;
-  for (const Element& e : elements_) {
+  for (uint32_t id = 0; id < elements_.size(); ++id) {
+    const Element& e = elements_[id];
     if (e.first_child >= 0) continue;
     Leaf l;
     std::copy(e.v, e.v + 3, l.v);
@@ -407,6 +422,10 @@ std::vector<HierarchicalSolver::Leaf> HierarchicalSolver::leaves() const {
     std::copy(e.W, e.W + 3, l.W);
     std::copy(e.E, e.E + 3, l.E);
     l.R = e.R;
+    l.link_density = 0.0;
+    for (int32_t a = static_cast<int32_t>(id); a >= 0; a = elements_[a].parent) {
+      l.link_density += incoming[a] / elements_[a].area;
+    }
     out.push_back(l);
   }
   return out;

@@ -24,7 +24,7 @@ struct HierarchicalOptions {
   RefinementOracle oracle = RefinementOracle::Importance;
   double epsilon = 1e-3;    // relative: of the brightest emission (BF) or of the measurement (importance)
   double min_area = 0.0;    // elements are not split below this area (0: 1e-4 of the largest input)
-  int shadow_rays = 4;      // per link
+  int shadow_rays = 1;      // per receiver quadrature point (7 per link) and per estimate (2)
   int sweeps = 30;          // Gauss-Seidel sweeps per step at most
   double tolerance = 1e-6;  // relative change per sweep that ends a step's sweeps
   uint64_t seed = 0;
@@ -61,6 +61,7 @@ class HierarchicalSolver {
     uint32_t root;
     double area;
     double B[3], W[3], E[3], R;  // W, R: importance and receiver per unit area
+    double link_density;         // links gathered by this leaf or its ancestors, per unit area
   };
   std::vector<Leaf> leaves() const;
   struct LinkView {
@@ -98,6 +99,7 @@ class HierarchicalSolver {
     uint32_t receiver, source;
     float F;         // receiver -> source form factor with the transport visibility estimate
     float F_oracle;  // the same with an independent visibility estimate, for the oracle only
+    float F_unoccluded;
   };
 
   Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const;

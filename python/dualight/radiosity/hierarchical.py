@@ -106,7 +106,8 @@ class HierarchicalSolver:
     min_area:
         Elements are not split below this area (default: 1e-4 of the largest input triangle).
     shadow_rays:
-        Visibility rays per link.
+        Visibility rays per receiver quadrature point (7 points per link), for each of the two
+        independent estimates a link keeps (one for transport, one for the oracle).
     """
 
     def __init__(
@@ -118,7 +119,7 @@ class HierarchicalSolver:
         oracle: Oracle = "importance",
         epsilon: float = 1e-3,
         min_area: float | None = None,
-        shadow_rays: int = 4,
+        shadow_rays: int = 1,
         sweeps: int = 30,
         tolerance: float = 1e-6,
         seed: int = 0,
@@ -216,4 +217,5 @@ class HierarchicalSolver:
             method="hierarchical",
             stats=stats,
             history={"hierarchical": list(self.history)},
+            link_density=leaves["link_density"],
         )

@@ -17,7 +17,7 @@ from dualight.radiosity.patches import PatchMesh
 from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
 from dualight.scene import Camera, Scene
 
-Mode = Literal["radiosity", "importance", "superposition"]
+Mode = Literal["radiosity", "importance", "superposition", "elements", "links"]
 
 
 class ConvergenceWarning(RuntimeWarning):
@@ -79,7 +79,8 @@ class Solution:
     camera: Camera
     method: str
     stats: dict[str, Any] = field(default_factory=dict)
-    history: dict[str, list[Step]] = field(default_factory=dict)
+    history: dict[str, list[Any]] = field(default_factory=dict)
+    link_density: np.ndarray | None = None  # hierarchical: links per unit area at each patch
 
     @property
     def areas(self) -> np.ndarray:
@@ -158,6 +159,9 @@ class Solution:
         importance in false colour (mean over channels, normalised, a black-red-yellow-white
         ramp). ``"superposition"``: the radiosity picture in grey with the important parts
         tinted yellow, in proportion to importance: where the work matters for the view.
+        ``"elements"``: every patch (leaf element) in its own colour, so the mesh shows.
+        ``"links"``: hierarchical solutions only, links per unit area in false colour (log
+        scale): where the work went.
         """
         cam = camera or self.camera
         prim, bary = _core.trace_camera_hits(
@@ -190,6 +194,21 @@ class Solution:
 
         if mode == "radiosity":
             return Image(sample(self.B / np.pi), stats={"mode": mode, "method": self.method})
+        if mode == "elements":
+            colours = np.random.default_rng(12345).uniform(0.15, 1.0, size=(len(self.patches), 3))
+            flat = np.where(visible[..., None], colours[idx], 0.0)
+            return Image(flat.mean(axis=2), stats={"mode": mode, "method": self.method})
+        if mode == "links":
+            if self.link_density is None:
+                raise ValueError("mode 'links' needs a hierarchical solution")
+            density = np.log10(np.maximum(self.link_density, 1e-30))[:, None]
+            lo = float(np.percentile(density, 1))
+            values = np.where(visible[..., None], (density - lo)[idx], 0.0).mean(axis=2)
+            t = self._normalised(values[..., 0], visible)
+            ramp = np.stack(
+                [np.clip(3 * t, 0, 1), np.clip(3 * t - 1, 0, 1), np.clip(3 * t - 2, 0, 1)], -1
+            )
+            return Image(ramp, stats={"mode": mode, "method": self.method})
         if self.I is None:
             raise ValueError("importance was not solved: call solve(..., importance=True)")
         # Importance per unit area (the adjoint of radiosity): independent of the meshing.
