@@ -321,9 +321,12 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   double change = 0.0;
   for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
     if (control != nullptr && control->cancelled()) break;
-    std::vector<double> before;
-    before.reserve(elements_.size() * 3);
-    for (const Element& e : elements_) before.insert(before.end(), e.B, e.B + 3);
+    std::vector<double> before;  // B and W of every element: both systems must settle
+    before.reserve(elements_.size() * 6);
+    for (const Element& e : elements_) {
+      before.insert(before.end(), e.B, e.B + 3);
+      before.insert(before.end(), e.W, e.W + 3);
+    }
     parallel_for_each_index(options_.threads, (elements_.size() + 1023) / 1024, [&](size_t chunk) {
       for (size_t e = chunk * 1024; e < std::min(elements_.size(), (chunk + 1) * 1024); ++e) {
         Element& el = elements_[e];
@@ -366,14 +369,19 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
 }
 
 double HierarchicalSolver::leaf_change(const std::vector<double>& before) const {
-  double worst = 0.0, scale = 0.0;
+  // Largest change of B and of W in this sweep, each relative to its own largest value.
+  double change[2] = {0, 0}, scale[2] = {0, 0};
   for (size_t e = 0; e < elements_.size(); ++e) {
     for (int c = 0; c < 3; ++c) {
-      worst = std::max(worst, std::abs(elements_[e].B[c] - before[3 * e + c]));
-      scale = std::max(scale, std::abs(elements_[e].B[c]));
+      change[0] = std::max(change[0], std::abs(elements_[e].B[c] - before[6 * e + c]));
+      scale[0] = std::max(scale[0], std::abs(elements_[e].B[c]));
+      change[1] = std::max(change[1], std::abs(elements_[e].W[c] - before[6 * e + 3 + c]));
+      scale[1] = std::max(scale[1], std::abs(elements_[e].W[c]));
     }
   }
-  return scale > 0.0 ? worst / scale : worst;
+  double worst = 0.0;
+  for (int k = 0; k < 2; ++k) worst = std::max(worst, scale[k] > 0.0 ? change[k] / scale[k] : change[k]);
+  return worst;
 }
 
 void HierarchicalSolver::measurements(double primal[3], double dual[3]) const {

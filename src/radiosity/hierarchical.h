@@ -35,7 +35,7 @@ struct HierarchicalStep {
   uint64_t iteration = 0;
   uint64_t elements = 0, leaves = 0, links = 0, links_refined = 0, rays = 0;
   uint64_t memory_bytes = 0;
-  double residual = 0.0;  // relative change of B in the last sweep
+  double residual = 0.0;  // largest relative change of B or W in the last sweep
   double seconds = 0.0;
   bool converged = false;  // nothing was refined
 };
