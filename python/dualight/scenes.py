@@ -390,3 +390,67 @@ def rooms(
             light = _axis_rect(1, sy - min(0.01, 0.01 * sy), p, q)
             add(scene, f"room{k}_light", [light], centre, reflectance=rho_k, emission=Le)
     return scene
+
+
+# Cube -----------------------------------------------------------------------------------------
+def cube(
+    resolution: tuple[int, int] = (64, 64),
+    *,
+    size: float = 1.0,
+    reflectance: float | Sequence[float] = 0.7,
+    light_radiance: float | Sequence[float] = 10.0,
+    fov: float = 100.0,
+) -> Scene:
+    """A closed cube lit by a small ceiling light, seen from inside: the scene where
+    everything is visible, so importance-driven refinement should change little.
+
+    Layout
+        y is up. The inside is ``[0, size]^3``; its 6 walls are single quads named ``floor``,
+        ``ceiling`` and ``wall_{east,west,north,south}`` (east +x, north +z), one-sided with
+        their front (right-hand-rule normal, the only side radiosity patches send and receive
+        on) facing into the cube. Every wall sees every other one.
+    Light
+        ``light``: a square of side ``size / 3`` (1/9 of the ceiling's area) centred under the
+        ceiling, ``0.01 * size`` below it, emitting ``light_radiance`` (grey or RGB)
+        downwards; it reflects like the walls.
+    Materials
+        Walls and light reflect ``reflectance`` (grey or RGB, in ``[0, 1]``).
+    Camera
+        Inside, near the lower south-west corner at ``0.1 * size`` from the floor and from
+        the two walls, looking at the opposite upper corner ``(size, size, size)`` with a wide
+        ``fov`` (100 degrees), so it sees the ceiling with the light, the east and north
+        walls and much of the floor.
+
+    7 quads, 14 triangles (12 for the walls, 2 for the light).
+    """
+    s = float(size)
+    if not (math.isfinite(s) and s > 0.0):
+        raise ValueError(f"cube: size must be positive, got {size!r}")
+    rho = tuple(np.broadcast_to(np.asarray(reflectance, dtype=np.float64), (3,)).tolist())
+    Le = tuple(np.broadcast_to(np.asarray(light_radiance, dtype=np.float64), (3,)).tolist())
+    lo, hi = np.zeros(3), np.full(3, s)
+    centre = np.full(3, 0.5 * s)
+    camera = Camera(
+        origin=(0.1 * s, 0.1 * s, 0.1 * s),
+        target=(s, s, s),
+        up=(0.0, 1.0, 0.0),
+        fov=fov,
+        resolution=tuple(resolution),
+    )
+    scene = Scene(camera=camera)
+    walls = {
+        "floor": _axis_rect(1, 0.0, lo, hi),
+        "ceiling": _axis_rect(1, s, lo, hi),
+        "wall_east": _axis_rect(0, s, lo, hi),
+        "wall_west": _axis_rect(0, 0.0, lo, hi),
+        "wall_north": _axis_rect(2, s, lo, hi),
+        "wall_south": _axis_rect(2, 0.0, lo, hi),
+    }
+    for name, quad in walls.items():
+        v, f = _quads_mesh([_orient(quad, centre, inward=True)])
+        scene.add_mesh(v, f, reflectance=rho, name=name)
+    third = s / 3.0
+    light = _axis_rect(1, s - 0.01 * s, centre - 0.5 * third, centre + 0.5 * third)
+    v, f = _quads_mesh([_orient(light, centre, inward=True)])
+    scene.add_mesh(v, f, reflectance=rho, emission=Le, name="light")
+    return scene

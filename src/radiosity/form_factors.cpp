@@ -65,30 +65,32 @@ double form_factor_to_polygon(const D3& x, const D3& n, const D3* poly, int m) {
   return count < 3 ? 0.0 : contour_integral(x, n, clipped, count);
 }
 
-struct QuadraturePoint {
-  double b0, b1, b2, weight;
-};
+}  // namespace
 
-std::vector<QuadraturePoint> triangle_rule(int order) {
+const std::vector<QuadraturePoint>& triangle_rule(int order) {
+  static const std::vector<QuadraturePoint> one = {{1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0}};
+  static const std::vector<QuadraturePoint> three = {  // degree 2 (Strang-Fix)
+      {2.0 / 3, 1.0 / 6, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 2.0 / 3, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 1.0 / 6, 2.0 / 3, 1.0 / 3}};
+  static const std::vector<QuadraturePoint> seven = [] {  // degree 5 (Radon)
+    const double s = std::sqrt(15.0);
+    const double a = (6.0 - s) / 21.0, b = (6.0 + s) / 21.0;
+    const double wa = (155.0 - s) / 1200.0, wb = (155.0 + s) / 1200.0;
+    return std::vector<QuadraturePoint>{{1.0 / 3, 1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, 1 - 2 * a, wa},
+                                        {a, 1 - 2 * a, a, wa},           {1 - 2 * a, a, a, wa},
+                                        {b, b, 1 - 2 * b, wb},           {b, 1 - 2 * b, b, wb},
+                                        {1 - 2 * b, b, b, wb}};
+  }();
   switch (order) {
     case 1:
-      return {{1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0}};
-    case 3:  // degree 2 (Strang-Fix)
-      return {{2.0 / 3, 1.0 / 6, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 2.0 / 3, 1.0 / 6, 1.0 / 3}, {1.0 / 6, 1.0 / 6, 2.0 / 3, 1.0 / 3}};
-    case 7: {  // degree 5 (Radon)
-      const double s = std::sqrt(15.0);
-      const double a = (6.0 - s) / 21.0, b = (6.0 + s) / 21.0;
-      const double wa = (155.0 - s) / 1200.0, wb = (155.0 + s) / 1200.0;
-      return {{1.0 / 3, 1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, 1 - 2 * a, wa}, {a, 1 - 2 * a, a, wa},
-              {1 - 2 * a, a, a, wa},           {b, b, 1 - 2 * b, wb}, {b, 1 - 2 * b, b, wb},
-              {1 - 2 * b, b, b, wb}};
-    }
+      return one;
+    case 3:
+      return three;
+    case 7:
+      return seven;
     default:
       throw std::invalid_argument("quadrature must be 1, 3 or 7 points");
   }
 }
-
-}  // namespace
 
 double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
   if (polygon.size() < 3 || polygon.size() > kMaxClipped / 2) {
@@ -189,13 +191,9 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
               } else {
                 u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
               }
-              // Contracted towards the centroid by 1e-4: a target within rounding of the patch's
-              // edge could land on a surface meeting it there (see Scene::visible).
-              const Point2 b = square_to_uniform_triangle(u);
-              constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
-              const float b1 = kContract * b.u + kToCentroid, b2 = kContract * b.v + kToCentroid;
-              const Vec3 y = patches.vertex(j, 0) * (1.f - b1 - b2) + patches.vertex(j, 1) * b1 +
-                             patches.vertex(j, 2) * b2;
+              const Point2 b = shadow_ray_target(u);
+              const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
+                             patches.vertex(j, 2) * b.v;
               visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
             }
             local_rays += static_cast<uint64_t>(options.shadow_rays);

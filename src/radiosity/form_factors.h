@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/render_control.h"
+#include "core/sampling.h"
 #include "geometry/scene.h"
 #include "radiosity/csr_matrix.h"
 
@@ -34,6 +35,20 @@ struct FormFactorStats {
   double seconds = 0.0;
   bool interrupted = false;
 };
+
+// Symmetric quadrature rules on a triangle: 1 (centroid), 3 (degree 2) or 7 points (degree 5).
+struct QuadraturePoint {
+  double b0, b1, b2, weight;
+};
+const std::vector<QuadraturePoint>& triangle_rule(int order);
+
+// Barycentrics (b1, b2) of a uniform sample on a triangle, contracted towards the centroid by
+// 1e-4 so that shadow rays never aim within rounding of the triangle's edges (see Scene::visible).
+inline Point2 shadow_ray_target(Point2 u) {
+  const Point2 b = square_to_uniform_triangle(u);
+  constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
+  return {kContract * b.u + kToCentroid, kContract * b.v + kToCentroid};
+}
 
 // Unoccluded form factor from a differential area at x (unit normal n) to a planar polygon,
 // whose front side (right-hand rule normal) must face x; 0 when x is behind or in its plane.

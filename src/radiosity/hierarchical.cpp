@@ -101,17 +101,13 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
   // point weighted by its own visibility of the source: kernel and visibility are correlated
   // across a partly hidden pair (a doorway), so F_unoccluded times one visible fraction for the
   // whole pair is biased.
-  static const double a = (6.0 - std::sqrt(15.0)) / 21.0, b = (6.0 + std::sqrt(15.0)) / 21.0;
-  static const double wa = (155.0 - std::sqrt(15.0)) / 1200.0, wb = (155.0 + std::sqrt(15.0)) / 1200.0;
-  static const double kRule[7][3] = {{1.0 / 3, 1.0 / 3, 9.0 / 40}, {a, a, wa}, {a, 1 - 2 * a, wa},
-                                     {1 - 2 * a, a, wa},           {b, b, wb}, {b, 1 - 2 * b, wb},
-                                     {1 - 2 * b, b, wb}};
+  const std::vector<QuadraturePoint>& rule = triangle_rule(7);
   Vec3 points[7];
   double kernel[7];
   double F = 0.0;
   for (int k = 0; k < 7; ++k) {
-    points[k] = point_in(r.v, static_cast<float>(kRule[k][0]), static_cast<float>(kRule[k][1]));
-    kernel[k] = kRule[k][2] * point_triangle_form_factor(points[k], r.normal, s.v);
+    points[k] = point_in(r.v, static_cast<float>(rule[k].b1), static_cast<float>(rule[k].b2));
+    kernel[k] = rule[k].weight * point_triangle_form_factor(points[k], r.normal, s.v);
     F += kernel[k];
   }
   Link link{receiver, source, static_cast<float>(F), static_cast<float>(F), static_cast<float>(F)};
@@ -124,10 +120,8 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
       if (!(kernel[k] > 0.0)) continue;
       int visible = 0;
       for (int m = 0; m < n; ++m) {
-        // Stratified source points, kept off the source's edges (see Scene::visible).
-        const Point2 u = square_to_uniform_triangle({(m + rng.next_float()) / n, rng.next_float()});
-        constexpr float kContract = 1.f - 1e-4f, kToCentroid = (1.f - kContract) / 3.f;
-        const Vec3 y = point_in(s.v, kContract * u.u + kToCentroid, kContract * u.v + kToCentroid);
+        const Point2 u = shadow_ray_target({(m + rng.next_float()) / n, rng.next_float()});
+        const Vec3 y = point_in(s.v, u.u, u.v);
         visible += scene_.visible(points[k], r.normal, y, s.root) ? 1 : 0;
       }
       rays += static_cast<uint64_t>(n);

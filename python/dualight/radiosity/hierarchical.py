@@ -62,32 +62,22 @@ def receiver_samples(
     Each sample carries ``1 / (samples in the window * pi)`` of the measurement, the mean
     pixel value of the (windowed) image, as :func:`dualight.radiosity.receiver` defines it.
     """
-    prim, bary = _core.trace_camera_hits(
-        scene._compile(), camera._compile(), samples_per_axis=samples_per_axis, seed=seed
-    )
-    if window is not None:
-        x0, y0, x1, y1 = window
-        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
-            raise ValueError(f"window {window} is not inside the {camera.resolution} image")
-        prim, bary = prim[y0:y1, x0:x1], bary[y0:y1, x0:x1]
-    prim, bary = prim.reshape(-1), bary.reshape(-1, 2)
-    total = prim.size
-    hit = prim >= 0
-    prim, bary = prim[hit], bary[hit]
+    from dualight.radiosity.solution import camera_samples
+
     positions, triangles, _ = scene.triangle_arrays()
-    corners = positions[triangles[prim]]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    point = (
-        corners[:, 0]
-        + bary[:, :1] * (corners[:, 1] - corners[:, 0])
-        + bary[:, 1:] * (corners[:, 2] - corners[:, 0])
+    prim, bary, front = camera_samples(
+        scene._compile(),
+        positions[triangles],
+        camera,
+        window=window,
+        samples_per_axis=samples_per_axis,
+        seed=seed,
     )
-    front = np.einsum("ij,ij->i", normal, np.asarray(camera.origin) - point) > 0
     return (
         prim[front].astype(np.uint32),
-        bary[front, 0].astype(np.float32),
-        bary[front, 1].astype(np.float32),
-        1.0 / (total * np.pi),
+        bary[front][:, 0].astype(np.float32),
+        bary[front][:, 1].astype(np.float32),
+        1.0 / (prim.size * np.pi),
     )
 
 

@@ -24,6 +24,43 @@ class ConvergenceWarning(RuntimeWarning):
     """An iterative solver stopped at max_iter with its residual above tol."""
 
 
+def camera_samples(
+    compiled: _core.Scene,
+    corners: np.ndarray,
+    camera: Camera,
+    *,
+    window: tuple[int, int, int, int] | None = None,
+    samples_per_axis: int = 4,
+    seed: int = 0,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Stratified camera samples over the image (or a pixel ``window``): the triangle each hits
+    (``-1``: none), its barycentrics, and whether it sees the triangle's front.
+
+    ``corners`` are the ``(T, 3, 3)`` corners of the compiled scene's triangles. Arrays are
+    ``(H, W, S)``, ``(H, W, S, 2)`` and ``(H, W, S)``. Patches are one-sided, so a sample that
+    sees a back contributes nothing.
+    """
+    prim, bary = _core.trace_camera_hits(
+        compiled, camera._compile(), samples_per_axis=samples_per_axis, seed=seed
+    )
+    if window is not None:
+        x0, y0, x1, y1 = window
+        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
+            raise ValueError(f"window {window} is not inside the {camera.resolution} image")
+        prim, bary = prim[y0:y1, x0:x1], bary[y0:y1, x0:x1]
+    c = corners[np.maximum(prim, 0)]
+    normal = np.cross(c[..., 1, :] - c[..., 0, :], c[..., 2, :] - c[..., 0, :])
+    point = (
+        c[..., 0, :]
+        + bary[..., :1] * (c[..., 1, :] - c[..., 0, :])
+        + bary[..., 1:] * (c[..., 2, :] - c[..., 0, :])
+    )
+    front = (prim >= 0) & (
+        np.einsum("...j,...j->...", normal, np.asarray(camera.origin) - point) > 0
+    )
+    return prim, bary, front
+
+
 def receiver(
     patches: PatchMesh,
     camera: Camera,
@@ -40,25 +77,16 @@ def receiver(
     window's stratified camera samples that land on the front of patch ``i``, divided by pi,
     and ``<R, B>`` is that mean pixel value. ``R_i > 0`` exactly for patches the camera sees.
     """
-    prim, _ = _core.trace_camera_hits(
-        patches._compile(), camera._compile(), samples_per_axis=samples_per_axis, seed=seed
+    prim, _, front = camera_samples(
+        patches._compile(),
+        patches.vertices[patches.triangles],
+        camera,
+        window=window,
+        samples_per_axis=samples_per_axis,
+        seed=seed,
     )
-    if window is not None:
-        x0, y0, x1, y1 = window
-        if not (0 <= x0 < x1 <= camera.width and 0 <= y0 < y1 <= camera.height):
-            raise ValueError(f"window {window} is not inside the {camera.resolution} image")
-        prim = prim[y0:y1, x0:x1]
-    hits = prim.reshape(-1)
-    total = hits.size
-    hits = hits[hits >= 0]
-    front = (
-        np.einsum(
-            "ij,ij->i", patches.normals[hits], np.asarray(camera.origin) - patches.centroids[hits]
-        )
-        > 0
-    )
-    counts = np.bincount(hits[front], minlength=len(patches)).astype(np.float64)
-    return counts / (total * np.pi)
+    counts = np.bincount(prim[front], minlength=len(patches)).astype(np.float64)
+    return counts / (prim.size * np.pi)
 
 
 @dataclass
@@ -164,20 +192,14 @@ class Solution:
         scale): where the work went.
         """
         cam = camera or self.camera
-        prim, bary = _core.trace_camera_hits(
-            self.patches._compile(), cam._compile(), samples_per_axis=samples_per_axis, seed=seed
+        prim, bary, visible = camera_samples(
+            self.patches._compile(),
+            self.patches.vertices[self.patches.triangles],
+            cam,
+            samples_per_axis=samples_per_axis,
+            seed=seed,
         )
-        hit = prim >= 0
-        idx = np.where(hit, prim, 0)
-        front = (
-            np.einsum(
-                "...j,...j->...",
-                self.patches.normals[idx],
-                np.asarray(cam.origin) - self.patches.centroids[idx],
-            )
-            > 0
-        )
-        visible = hit & front
+        idx = np.maximum(prim, 0)
 
         def sample(values: np.ndarray) -> np.ndarray:
             if smooth:
