@@ -18,6 +18,10 @@ The references (see README.md beside this file for how long they took):
 * ``furnace_64``: ``furnace(0.5, 1.0, (64, 64))``, ``max_depth=16``, ``rr_depth=5``. With paths
   of at most ``k`` segments its radiance is ``sum_{i<k} rho^i Le = Le (1 - rho^k) / (1 - rho)``
   everywhere, here ``2 (1 - 2^-16)``.
+* ``cornell_64_full``: the same Cornell box with ``max_depth=-1`` (unbounded: every bounce,
+  ended only by Russian roulette from ``rr_depth=5``, which keeps the mean). This is the full
+  global illumination that radiosity computes (it counts every bounce), so
+  ``tests/test_radiosity_vs_mitsuba.py`` compares against it.
 """
 
 from __future__ import annotations
@@ -64,6 +68,13 @@ def _references() -> dict[str, Reference]:
             lambda: scenes.furnace(0.5, 1.0, (64, 64)),
             spp=16384,
             max_depth=16,
+        ),
+        Reference(
+            "cornell_64_full",
+            "cornell_box(resolution=(64, 64))",
+            lambda: scenes.cornell_box(resolution=(64, 64)),
+            spp=262144,
+            max_depth=-1,
         ),
     ]
     return {r.name: r for r in refs}
