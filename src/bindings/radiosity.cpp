@@ -93,15 +93,40 @@ void bind_radiosity(py::module_& m) {
                                                                       "Sparse form factors F (CSR) and F^T.")
       .def_property_readonly("n", [](const FormFactorMatrices& f) { return f.F.n; })
       .def_property_readonly("nonzeros", [](const FormFactorMatrices& f) { return f.F.nonzeros(); })
-      .def_property_readonly("indptr", [](const FormFactorMatrices& f) {
-        return py::array_t<uint64_t>(static_cast<py::ssize_t>(f.F.indptr.size()), f.F.indptr.data());
+      // Views into the C++ arrays (no copy); they keep the matrices alive.
+      .def_property_readonly("indptr", [](py::object self) {
+        const auto& f = self.cast<const FormFactorMatrices&>();
+        return py::array_t<uint64_t>(static_cast<py::ssize_t>(f.F.indptr.size()), f.F.indptr.data(), self);
       })
-      .def_property_readonly("indices", [](const FormFactorMatrices& f) {
-        return py::array_t<uint32_t>(static_cast<py::ssize_t>(f.F.indices.size()), f.F.indices.data());
+      .def_property_readonly("indices", [](py::object self) {
+        const auto& f = self.cast<const FormFactorMatrices&>();
+        return py::array_t<uint32_t>(static_cast<py::ssize_t>(f.F.indices.size()), f.F.indices.data(), self);
       })
-      .def_property_readonly("values", [](const FormFactorMatrices& f) {
-        return py::array_t<float>(static_cast<py::ssize_t>(f.F.values.size()), f.F.values.data());
+      .def_property_readonly("values", [](py::object self) {
+        const auto& f = self.cast<const FormFactorMatrices&>();
+        return py::array_t<float>(static_cast<py::ssize_t>(f.F.values.size()), f.F.values.data(), self);
       })
+      .def(
+          "checks",
+          [](const FormFactorMatrices& f, const py::array_t<double, py::array::c_style | py::array::forcecast>& areas) {
+            if (areas.ndim() != 1 || static_cast<size_t>(areas.shape(0)) != f.F.n) {
+              throw py::value_error("areas must have one entry per patch");
+            }
+            const std::vector<double> a(areas.data(), areas.data() + areas.size());
+            FormFactorMatrices::Checks c;
+            {
+              py::gil_scoped_release release;
+              c = f.checks(a);
+            }
+            py::dict d;
+            d["reciprocity_max_relative_error"] = c.reciprocity_max;
+            d["reciprocity_mean_relative_error"] = c.reciprocity_mean;
+            d["row_sum_min"] = c.row_sum_min;
+            d["row_sum_max"] = c.row_sum_max;
+            d["row_sum_mean"] = c.row_sum_mean;
+            return d;
+          },
+          py::arg("areas"), "Reciprocity A_i F_ij = A_j F_ji and row-sum (closure) summaries.")
       .def("row_sums", [](const FormFactorMatrices& f) {
         std::vector<double> s(f.F.n);
         for (uint32_t i = 0; i < f.F.n; ++i) s[i] = f.F.row_sum(i);

@@ -36,7 +36,7 @@ SolverStep JacobiSolver::step() {
     }
   });
   x_.swap(next_);
-  residual_ = system_->relative_residual(side_, x_, b_);
+  residual_ = system_->relative_residual(side_, x_, b_, threads_);
   return {++iteration_, residual_, seconds_since(t0)};
 }
 
