@@ -129,3 +129,12 @@ def test_pictures_of_a_hierarchical_solution() -> None:
 def test_bad_options_raise(kwargs, message) -> None:
     with pytest.raises(ValueError, match=message):
         HierarchicalSolver(scenes.cornell_box(resolution=(8, 8)), **kwargs)
+
+
+def test_link_limit_stops_refinement_without_crashing() -> None:
+    solver = HierarchicalSolver(scenes.furnace(0.5, 1.0), oracle="bf", epsilon=1e-4, max_links=5000)
+    steps = solver.solve(max_iter=30)
+    assert steps[-1].link_limit and not solver.converged
+    assert steps[-1].links <= 5000
+    with pytest.warns(dualight.radiosity.ConvergenceWarning):
+        solve(scenes.furnace(0.5, 1.0), "hierarchical", oracle="bf", epsilon=1e-4, max_links=5000)

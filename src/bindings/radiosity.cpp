@@ -241,17 +241,20 @@ void bind_radiosity(py::module_& m) {
 
   py::class_<HierarchicalOptions>(m, "HierarchicalOptions", "Options of HierarchicalSolver (keywords only).")
       .def(py::init([](RefinementOracle oracle, double epsilon, double min_area, int shadow_rays, int sweeps,
-                       double tolerance, uint64_t seed, int threads) {
+                       double tolerance, uint64_t seed, int threads, uint64_t max_links) {
              if (!(epsilon > 0.0)) throw py::value_error("epsilon must be > 0");
              if (!(min_area >= 0.0)) throw py::value_error("min_area must be >= 0");
              if (shadow_rays < 0) throw py::value_error("shadow_rays must be >= 0");
              if (sweeps < 1) throw py::value_error("sweeps must be >= 1");
              if (!(tolerance > 0.0)) throw py::value_error("tolerance must be > 0");
-             return HierarchicalOptions{oracle, epsilon, min_area, shadow_rays, sweeps, tolerance, seed, threads};
+             if (max_links < 1) throw py::value_error("max_links must be >= 1");
+             return HierarchicalOptions{oracle, epsilon, min_area, shadow_rays, sweeps, tolerance, seed, threads,
+                                        max_links};
            }),
            py::kw_only(), py::arg("oracle") = RefinementOracle::Importance, py::arg("epsilon") = 1e-4,
            py::arg("min_area") = 0.0, py::arg("shadow_rays") = 1, py::arg("sweeps") = 30,
-           py::arg("tolerance") = 1e-6, py::arg("seed") = 0, py::arg("threads") = 0)
+           py::arg("tolerance") = 1e-6, py::arg("seed") = 0, py::arg("threads") = 0,
+           py::arg("max_links") = 20000000)
       .def_readonly("epsilon", &HierarchicalOptions::epsilon)
       .def_readonly("min_area", &HierarchicalOptions::min_area);
 
@@ -294,6 +297,7 @@ void bind_radiosity(py::module_& m) {
             d["residual"] = st.residual;
             d["seconds"] = st.seconds;
             d["converged"] = st.converged;
+            d["link_limit"] = st.link_limit;
             return d;
           },
           py::arg("progress") = py::none())

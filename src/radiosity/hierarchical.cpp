@@ -260,6 +260,13 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
       }
       if (q > threshold && std::max(r.area, s.area) / 4.0 >= options_.min_area) to_refine.push_back(l);
     }
+    // Each refinement adds three links: stop before max_links (BF in a scene where everything
+    // emits would otherwise refine until memory runs out).
+    const uint64_t room = options_.max_links > links_.size() ? (options_.max_links - links_.size()) / 3 : 0;
+    if (to_refine.size() > room) {
+      to_refine.resize(room);
+      st.link_limit = true;
+    }
     // Split the larger end of each flagged link, then link its children in its place.
     std::vector<Link> kept;
     std::vector<std::pair<uint32_t, uint32_t>> pending;  // (receiver, source) of new links
@@ -357,7 +364,7 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   st.rays = rays_ - rays_before;
   st.memory_bytes = elements_.size() * sizeof(Element) + links_.capacity() * sizeof(Link);
   st.residual = change;
-  st.converged = iteration_ > 1 && st.links_refined == 0;
+  st.converged = iteration_ > 1 && st.links_refined == 0 && !st.link_limit;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }

@@ -29,6 +29,7 @@ struct HierarchicalOptions {
   double tolerance = 1e-6;  // relative change per sweep that ends a step's sweeps
   uint64_t seed = 0;
   int threads = 0;
+  uint64_t max_links = 20000000;  // refinement stops before exceeding this (about 0.5 GiB)
 };
 
 struct HierarchicalStep {
@@ -38,6 +39,7 @@ struct HierarchicalStep {
   double residual = 0.0;  // largest relative change of B or W in the last sweep
   double seconds = 0.0;
   bool converged = false;  // nothing was refined
+  bool link_limit = false;  // refinement was cut short by max_links
 };
 
 // Camera samples for the receiver: root triangle, barycentrics, weight (front-facing hits only).

@@ -9,13 +9,23 @@ so the unseen parts of a large model stay coarse.
     while not solver.step().converged: ...
     solution = solver.solution()          # the same Solution type as the flat solvers
 
-Oracles, for a link carrying energy from element j to element i (form factor F_ij):
+Oracles, for a link carrying energy from element j to element i (form factor F_ij, and
+F_max = max(F_ij, F_ji): a small source next to a large receiver has a small F_ij but makes the
+receiver's irradiance vary strongly, so both directions are tested, as in HSA91):
 
-* ``"bf"``: refine when the power it brings, ``A_i F_ij B_j``, exceeds ``epsilon`` times the
-  scene's emitted power.
-* ``"importance"``: refine when its share of the measurement, ``A_i rho_i F_ij B_j W_i`` (W:
-  importance per unit area of the receiver), exceeds ``epsilon`` times the measurement. The
-  same product is the share of the importance the link carries back from i to j.
+* ``"bf"``: refine when ``F_max * B_j`` (a bound on the radiosity error the link leaves at the
+  receiver) exceeds ``epsilon`` times the brightest emitted radiosity.
+* ``"importance"``: refine when ``F_max * rho_i * W_i * B_j * max(A_i, A_j)`` (that error
+  weighted by the receiver's importance W, plus the importance error it leaves at the source
+  weighted by the source's radiosity) exceeds ``epsilon`` times the measurement.
+
+A partly visible link is judged by its unoccluded form factor, so shadow boundaries refine. Each
+link keeps two independent visibility estimates: one carries light, the other decides
+refinement (with one, refinement would keep unlucky underestimates: a dark bias).
+
+BF's threshold is relative to the brightest emitter, so dim interreflections stay coarse until
+epsilon is small; importance's is relative to the view's measurement. Measured in
+benchmarks/bench_hierarchical.py.
 """
 
 from __future__ import annotations
@@ -47,6 +57,7 @@ class HierarchicalStep:
     residual: float
     seconds: float
     converged: bool
+    link_limit: bool
 
 
 def receiver_samples(
@@ -98,6 +109,9 @@ class HierarchicalSolver:
     shadow_rays:
         Visibility rays per receiver quadrature point (7 points per link), for each of the two
         independent estimates a link keeps (one for transport, one for the oracle).
+    max_links:
+        Refinement stops before this many links (steps report ``link_limit``; the solution is
+        then not converged).
     """
 
     def __init__(
@@ -114,6 +128,7 @@ class HierarchicalSolver:
         tolerance: float = 1e-6,
         seed: int = 0,
         threads: int = 0,
+        max_links: int = 20_000_000,
     ) -> None:
         if oracle not in ("bf", "importance"):
             raise ValueError(f"oracle must be 'bf' or 'importance', got {oracle!r}")
@@ -136,6 +151,7 @@ class HierarchicalSolver:
             tolerance=tolerance,
             seed=seed,
             threads=threads,
+            max_links=max_links,
         )
         self._core = _core.HierarchicalSolver(scene._compile(), prim, b1, b2, weight, options)
         self.setup_seconds = time.perf_counter() - start
@@ -151,7 +167,8 @@ class HierarchicalSolver:
     def solve(self, max_iter: int = 30) -> list[HierarchicalStep]:
         """Step until nothing is refined (or ``max_iter`` steps); returns all steps."""
         while len(self.history) < max_iter:
-            if self.step().converged:
+            step = self.step()
+            if step.converged or step.link_limit:
                 break
         return self.history
 

@@ -303,6 +303,7 @@ def solve(
     oracle: str = "importance",
     epsilon: float = 1e-3,
     min_area: float | None = None,
+    max_links: int = 20_000_000,
 ) -> Solution:
     """Solve the radiosity system of a diffuse scene and, with ``importance``, its dual.
 
@@ -328,10 +329,10 @@ def solve(
         Form-factor accuracy (see :func:`form_factors`).
     patches, form_factors_:
         Reuse a patch mesh and its form factors (for comparing methods on one system).
-    oracle, epsilon, min_area:
+    oracle, epsilon, min_area, max_links:
         Hierarchical only: refinement oracle (``"importance"`` or ``"bf"``), its relative
-        threshold, and the smallest element area; ``max_iter`` bounds the refine-and-solve
-        iterations and ``tol`` the change per sweep.
+        threshold, the smallest element area and a cap on links; ``max_iter`` bounds the
+        refine-and-solve iterations and ``tol`` the change per sweep.
     """
     if method == "hierarchical":
         from dualight.radiosity.hierarchical import HierarchicalSolver
@@ -347,6 +348,7 @@ def solve(
             tolerance=tol,
             seed=seed,
             threads=threads or 0,
+            max_links=max_links,
         )
         solver.solve(max_iter=min(max_iter, 100))
         if not solver.converged:
