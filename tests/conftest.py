@@ -29,3 +29,30 @@ def tiny_scene(quad: tuple[np.ndarray, np.ndarray]) -> dualight.Scene:
     scene = dualight.Scene(camera=cam)
     scene.add_mesh(*quad, reflectance=(0.5, 0.5, 0.5), emission=(1.0, 2.0, 3.0))
     return scene
+
+
+def _nearest_hits(
+    scene: dualight.Scene, origins: np.ndarray, dirs: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Nearest hit (distance, triangle normal) of each ray against all triangles (numpy)."""
+    tri = np.concatenate([m.vertices[m.triangles] for m in scene.meshes])  # (T, 3, 3)
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    p = np.cross(dirs[:, None], e2[None])
+    det = np.einsum("rtj,tj->rt", p, e1)
+    inv = 1.0 / np.where(det == 0.0, np.inf, det)
+    s = origins[:, None] - tri[None, :, 0]
+    u = np.einsum("rtj,rtj->rt", s, p) * inv
+    q = np.cross(s, e1[None])
+    v = np.einsum("rj,rtj->rt", dirs, q) * inv
+    t = np.einsum("rtj,tj->rt", q, e2) * inv
+    hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-9)
+    t = np.where(hit, t, np.inf)
+    first = t.argmin(axis=1)
+    return t[np.arange(len(t)), first], np.cross(e1, e2)[first]
+
+
+@pytest.fixture
+def first_hits():
+    """A numpy ray-triangle intersector, independent of Embree: (distance, triangle normal) of
+    each ray's nearest hit, for checking scene geometry (closedness, face orientation)."""
+    return _nearest_hits

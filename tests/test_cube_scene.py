@@ -24,26 +24,6 @@ def _face_normals(mesh: dualight.Mesh) -> tuple[np.ndarray, np.ndarray]:
     return np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), v.mean(axis=1)
 
 
-def _first_hits(
-    scene: dualight.Scene, origins: np.ndarray, dirs: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Nearest hit (distance, triangle normal) of each ray against all triangles (numpy)."""
-    tri = np.concatenate([m.vertices[m.triangles] for m in scene.meshes])  # (T, 3, 3)
-    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-    p = np.cross(dirs[:, None], e2[None])
-    det = np.einsum("rtj,tj->rt", p, e1)
-    inv = 1.0 / np.where(det == 0.0, np.inf, det)
-    s = origins[:, None] - tri[None, :, 0]
-    u = np.einsum("rtj,rtj->rt", s, p) * inv
-    q = np.cross(s, e1[None])
-    v = np.einsum("rj,rtj->rt", dirs, q) * inv
-    t = np.einsum("rtj,tj->rt", q, e2) * inv
-    hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-9)
-    t = np.where(hit, t, np.inf)
-    first = t.argmin(axis=1)
-    return t[np.arange(len(t)), first], np.cross(e1, e2)[first]
-
-
 # Geometry -----------------------------------------------------------------------------------
 @pytest.mark.parametrize("size", [1.0, 2.5])
 def test_walls_face_inward_and_close_the_cube(size: float) -> None:
@@ -85,7 +65,7 @@ def test_light_size_place_and_direction() -> None:
         scenes.cube(size=0.0)
 
 
-def test_rays_from_inside_end_on_front_faces() -> None:
+def test_rays_from_inside_end_on_front_faces(first_hits) -> None:
     # Closed: from anywhere inside, any ray ends on a surface seen from its front; none
     # escapes the cube (the light's back, facing the ceiling, is only seen from the 1% gap).
     scene = scenes.cube()
@@ -94,7 +74,7 @@ def test_rays_from_inside_end_on_front_faces() -> None:
     origins[:, 1] *= 0.95  # below the light
     dirs = rng.normal(size=origins.shape)
     dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
-    t, normal = _first_hits(scene, origins, dirs)
+    t, normal = first_hits(scene, origins, dirs)
     assert np.all(np.isfinite(t))
     assert np.all(np.einsum("ij,ij->i", normal, dirs) < 0)
     hit = origins + t[:, None] * dirs

@@ -151,28 +151,8 @@ def test_every_surface_faces_into_its_room(doors: bool) -> None:
             assert np.all(dots > 0), (m.name, j)
 
 
-def _first_hits(
-    scene: dualight.Scene, origins: np.ndarray, dirs: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Nearest hit (distance, triangle normal) of each ray against all triangles (numpy)."""
-    tri = np.concatenate([m.vertices[m.triangles] for m in scene.meshes])  # (T, 3, 3)
-    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
-    p = np.cross(dirs[:, None], e2[None])  # (R, T, 3)
-    det = np.einsum("rtj,tj->rt", p, e1)
-    inv = 1.0 / np.where(det == 0.0, np.inf, det)
-    s = origins[:, None] - tri[None, :, 0]
-    u = np.einsum("rtj,rtj->rt", s, p) * inv
-    q = np.cross(s, e1[None])
-    v = np.einsum("rj,rtj->rt", dirs, q) * inv
-    t = np.einsum("rtj,tj->rt", q, e2) * inv
-    hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-9)
-    t = np.where(hit, t, np.inf)
-    first = t.argmin(axis=1)
-    return t[np.arange(len(t)), first], np.cross(e1, e2)[first]
-
-
 @pytest.mark.parametrize("doors", [True, False])
-def test_rays_from_inside_end_on_front_faces(doors: bool) -> None:
+def test_rays_from_inside_end_on_front_faces(doors: bool, first_hits) -> None:
     # Closed geometry: from anywhere inside any room, any ray ends on a surface seen from its
     # front, through doors too; nothing is open, and no back of a surface is in view.
     n = 4
@@ -189,7 +169,7 @@ def test_rays_from_inside_end_on_front_faces(doors: bool) -> None:
     dirs /= np.linalg.norm(dirs, axis=1, keepdims=True)
     dirs[::8] = [1.0, 0.0, 0.0]  # some rays straight east and north, through doors
     dirs[1::8] = [0.0, 0.0, 1.0]
-    t, normal = _first_hits(scene, origins, dirs)
+    t, normal = first_hits(scene, origins, dirs)
     assert np.all(np.isfinite(t))
     assert np.all(np.einsum("ij,ij->i", normal, dirs) < 0)
     hit = origins + t[:, None] * dirs
