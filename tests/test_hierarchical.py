@@ -138,3 +138,17 @@ def test_link_limit_stops_refinement_without_crashing() -> None:
     assert steps[-1].links <= 5000
     with pytest.warns(dualight.radiosity.ConvergenceWarning):
         solve(scenes.furnace(0.5, 1.0), "hierarchical", oracle="bf", epsilon=1e-4, max_links=5000)
+
+
+def test_on_the_cube_importance_needs_no_more_links_than_bf() -> None:
+    # Everything in the cube is visible, so importance has little to skip; it must not cost more
+    # than 1.1x BF's links for no worse a view error (benchmark: it needs far fewer, since BF's
+    # threshold follows the bright light and leaves dim interreflections coarse).
+    scene = scenes.cube()
+    reference = np.asarray(dualight.render(scene, spp=512, seed=2, progress=False)).mean(
+        axis=(0, 1)
+    )
+    bf = solve(scene, "hierarchical", oracle="bf", epsilon=1e-2)
+    imp = solve(scene, "hierarchical", oracle="importance", epsilon=1e-2)
+    assert _view_error(imp, reference) <= _view_error(bf, reference)
+    assert imp.stats["links"] <= 1.1 * bf.stats["links"], (imp.stats["links"], bf.stats["links"])
