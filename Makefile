@@ -35,6 +35,8 @@ test-fast: install
 
 bench: install
 	$(PY) benchmarks/bench_path.py
+	$(PY) benchmarks/bench_radiosity.py
+	$(PY) benchmarks/bench_hierarchical.py
 
 clean:
 	rm -rf build out $(VENV)/.installed
