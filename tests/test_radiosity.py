@@ -44,7 +44,7 @@ def cornell() -> tuple[dualight.Scene, PatchMesh, tuple]:
 @pytest.fixture(scope="module")
 def cornell_direct(cornell) -> dualight.radiosity.Solution:
     scene, patches, ff = cornell
-    return solve(scene, "direct", patches=patches, form_factors_=ff)
+    return solve(scene, "direct", patches=patches, precomputed=ff)
 
 
 def _csr(F: _core.FormFactors) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -110,7 +110,7 @@ def test_furnace_direct_matches_analytic_radiosity(rho: float) -> None:
         wrong,
         "direct",
         patches=PatchMesh(wrong, max_edge=0.25),
-        form_factors_=(sol.form_factors, sol.stats["form_factors"]),
+        precomputed=(sol.form_factors, sol.stats["form_factors"]),
     )
     assert float(np.abs(off.B / exact - 1.0).min()) > 5e-3
 
@@ -138,7 +138,7 @@ def test_iterative_solvers_agree_with_direct(cornell, cornell_direct, bounds, me
     # max(M^-T 1) = 4.1.
     scene, patches, ff = cornell
     tol = 1e-6
-    sol = solve(scene, method, tol=tol, patches=patches, form_factors_=ff)
+    sol = solve(scene, method, tol=tol, patches=patches, precomputed=ff)
     ref = cornell_direct
     assert sol.stats["converged"], sol.stats
     err_B = np.abs(sol.B - ref.B).max()  # noqa: N806
@@ -168,7 +168,7 @@ def test_agreement_bound_is_tight_enough_to_see_a_one_percent_reflectance_error(
         darker,
         "direct",
         patches=PatchMesh(darker, max_edge=80.0),
-        form_factors_=ff,
+        precomputed=ff,
         importance=False,
     )
     ref = cornell_direct
@@ -192,7 +192,7 @@ def test_duality_gap_of_iterative_solvers(cornell, method) -> None:
     # = 17.5 tol is not a bound (jacobi exceeds it).
     scene, patches, ff = cornell
     tol = 1e-6
-    sol = solve(scene, method, tol=tol, patches=patches, form_factors_=ff)
+    sol = solve(scene, method, tol=tol, patches=patches, precomputed=ff)
     gap = sol.measurement_primal - sol.measurement_dual
     rB, rI = _residuals(sol)  # noqa: N806
     identity = np.sum(rI * sol.B, axis=0) - np.sum(sol.I * rB, axis=0)
@@ -229,7 +229,7 @@ WINDOW = (8, 4, 20, 14)  # x0, y0, x1, y1, half-open
 
 def test_window_receiver(cornell, cornell_direct) -> None:
     scene, patches, ff = cornell
-    sol = solve(scene, "direct", window=WINDOW, patches=patches, form_factors_=ff)
+    sol = solve(scene, "direct", window=WINDOW, patches=patches, precomputed=ff)
     x0, y0, x1, y1 = WINDOW
     prim, _ = _core.trace_camera_hits(
         patches._compile(), scene.camera._compile(), samples_per_axis=4, seed=0
@@ -375,7 +375,7 @@ def test_non_positive_max_edge(max_edge: float) -> None:
 def test_window_outside_the_image(cornell, window) -> None:
     scene, patches, ff = cornell
     with pytest.raises(ValueError, match=r"window .* is not inside the \(32, 24\) image"):
-        solve(scene, "direct", window=window, patches=patches, form_factors_=ff)
+        solve(scene, "direct", window=window, patches=patches, precomputed=ff)
 
 
 @pytest.mark.parametrize(
@@ -384,7 +384,7 @@ def test_window_outside_the_image(cornell, window) -> None:
 def test_bad_stopping_rule(cornell, kwargs, message) -> None:
     scene, patches, ff = cornell
     with pytest.raises(ValueError, match=message):
-        solve(scene, "jacobi", patches=patches, form_factors_=ff, **kwargs)
+        solve(scene, "jacobi", patches=patches, precomputed=ff, **kwargs)
 
 
 # 15. Southwell --------------------------------------------------------------------------------

@@ -170,7 +170,7 @@ def test_negative_controls_fail(
         method="gauss_seidel",
         importance=False,
         patches=patches,
-        form_factors_=(solution.form_factors, solution.stats["form_factors"]),
+        precomputed=(solution.form_factors, solution.stats["form_factors"]),
     )
     outcome = _outcome(f"cornell {wrong}", wrong_solution, time.perf_counter() - start, light)
     print(f"\nradiosity {wrong} vs Mitsuba: {outcome}")

@@ -54,7 +54,6 @@ class Scene {
   Vec3 bounds_max() const { return bounds_max_; }
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
-  bool occluded(const Ray& ray) const { return accel_->occluded(ray); }
   // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
   // The ray aims at p1 itself and the first hit must be the target or a triangle coplanar with it
   // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to

@@ -54,7 +54,6 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     for (int c = 0; c < 3; ++c) {
       e.rho[c] = rho[c];
       e.E[c] = kPi * m.emission[c];  // emitted radiosity
-      emitted_power_ += e.area * e.E[c] * kLuminance[c];
       emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminance[0] + e.E[1] * kLuminance[1] +
                                                                    e.E[2] * kLuminance[2]);
     }

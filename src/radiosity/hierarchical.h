@@ -122,7 +122,6 @@ class HierarchicalSolver {
   std::vector<Link> links_;
   uint32_t roots_;
   uint64_t iteration_ = 0, rays_ = 0;
-  double emitted_power_ = 0.0;
   double emitted_radiosity_max_ = 0.0;  // luminance of the brightest emitter's radiosity
 };
 

@@ -299,7 +299,7 @@ def solve(
     threads: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
     patches: PatchMesh | None = None,
-    form_factors_: tuple[_core.FormFactors, dict[str, Any]] | None = None,
+    precomputed: tuple[_core.FormFactors, dict[str, Any]] | None = None,
     oracle: str = "importance",
     epsilon: float = 1e-3,
     min_area: float | None = None,
@@ -327,7 +327,7 @@ def solve(
         pixel window ``(x0, y0, x1, y1)``.
     quadrature, shadow_rays, seed:
         Form-factor accuracy (see :func:`form_factors`).
-    patches, form_factors_:
+    patches, precomputed:
         Reuse a patch mesh and its form factors (for comparing methods on one system).
     oracle, epsilon, min_area, max_links:
         Hierarchical only: refinement oracle (``"importance"`` or ``"bf"``), its relative
@@ -383,7 +383,7 @@ def solve(
     elif callable(progress):
         callback = progress
     try:
-        F, ff_stats = form_factors_ or form_factors(
+        F, ff_stats = precomputed or form_factors(
             patches,
             quadrature=quadrature,
             shadow_rays=shadow_rays,

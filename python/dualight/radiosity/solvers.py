@@ -134,7 +134,6 @@ class SouthwellSolver(_CoreStepped):
         super().__init__(
             _core.SouthwellSolver(system, rhs, dual=dual, shots_per_step=shots_per_step)
         )
-        self._rho = None
 
     @property
     def unshot(self) -> np.ndarray:
