@@ -17,7 +17,8 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
 
   Color L(0.f), beta(1.f);
   Ray ray = camera_ray;
-  float prev_pdf_w = 0.f;  // solid-angle density of the BSDF sample that made `ray`
+  float prev_pdf_w = 0.f;    // solid-angle density of the BSDF sample that made `ray`
+  bool prev_delta = true;    // the camera ray, like a delta bounce, cannot be found by NEE
   // `depth` is the number of segments up to and including `ray`, i.e. the index of the vertex it hits.
   for (int depth = 1; depth_allows(depth); ++depth) {
     SurfaceHit hit;
@@ -27,7 +28,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     const Vec3 wo_world = -ray.d;
     const Color Le = Scene::emitted(hit, wo_world);
     if (!is_black(Le)) {
-      if (depth == 1) {
+      if (prev_delta) {
         L += beta * Le;
       } else {
         // The same point could have been found by next-event estimation from the previous vertex.
@@ -38,13 +39,14 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     }
     if (!depth_allows(depth + 1)) break;
 
-    // Two-sided surfaces: shade in a frame whose normal faces the arriving path.
-    const Vec3 ns = dot(hit.n, wo_world) > 0.f ? hit.n : -hit.n;
+    // The frame keeps the geometric normal (it tells a dielectric's inside from its outside);
+    // two-sided BSDFs handle wo.z < 0 themselves.
+    const Vec3 ns = hit.n;
     const Frame frame = Frame::from_normal(ns);
     const Vec3 wo = frame.to_local(wo_world);
     const Bsdf& bsdf = hit.material->bsdf;
 
-    if (has_emitters) {
+    if (has_emitters && !is_delta(bsdf)) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
       const EmitterSample es = scene.sample_emitter(u_select, u_light);
@@ -71,6 +73,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     if (!sample(bsdf, wo, sampler.next_2d(), TransportMode::Radiance, bs)) break;
     beta *= bs.weight;
     prev_pdf_w = bs.pdf_w;
+    prev_delta = bs.delta;
     const Vec3 wi_world = frame.to_world(bs.wi);
     ray = Ray{offset_ray_origin(hit.p, bs.wi.z > 0.f ? ns : -ns), wi_world};
 
