@@ -55,6 +55,8 @@ class Image:
                 raise ValueError(f"variance shape {variance.shape} differs from {arr.shape}")
         self.variance = variance
         self.stats: dict[str, Any] = dict(stats or {})
+        # BDPT's per-strategy images, keyed by (s, t), when asked for.
+        self.strategies: dict[tuple[int, int], np.ndarray] = {}
 
     # numpy interoperability -------------------------------------------------------------
     def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:

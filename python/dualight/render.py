@@ -9,8 +9,9 @@ from typing import Any
 from dualight.image import Image
 from dualight.scene import Camera, Scene
 
-METHODS = ("path",)
+METHODS = ("path", "light", "bdpt")
 SAMPLERS = ("independent", "sobol")
+HEURISTICS = ("power", "balance")
 
 ProgressCallback = Callable[[int, int], None]
 
@@ -56,6 +57,8 @@ def render(
     progress: bool | ProgressCallback = True,
     camera: Camera | None = None,
     sampler: str = "independent",
+    heuristic: str = "power",
+    strategy_images: bool = False,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -63,9 +66,15 @@ def render(
     ----------
     method:
         ``"path"``: path tracing with next-event estimation and MIS (power heuristic).
+        ``"light"``: light (particle) tracing, the adjoint estimator: ``spp`` x pixels
+        particles leave the emitters and every diffuse vertex is connected to the camera, as
+        Mitsuba's ``ptracer``. Surfaces seen only through a mirror or glass next to the camera
+        (specular-to-camera paths) stay dark: no particle can reach the pinhole through them.
+        ``"bdpt"``: bidirectional path tracing, every (s, t) strategy combined by MIS.
     spp:
-        Samples per pixel. ``None`` renders until ``time_limit``. With both, whichever ends
-        first stops the render (at a whole pass, so every pixel has the same count).
+        Samples per pixel (particles per pixel for ``"light"``). ``None`` renders until
+        ``time_limit``. With both, whichever ends first stops the render (at a whole pass, so
+        every pixel has the same count).
     time_limit:
         Seconds of wall time, or ``None``.
     max_depth:
@@ -87,6 +96,12 @@ def render(
         are honest error estimates) or ``"sobol"`` (Owen-scrambled padded Sobol, as pbrt-v4's
         default: lower error at the same spp, but its per-pixel sample variance overstates the
         error, so use independent sampling for statistical tests).
+    heuristic:
+        BDPT's MIS heuristic: ``"power"`` (exponent 2, the default) or ``"balance"``.
+    strategy_images:
+        BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
+        contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
+        ``t`` camera vertices, ``s + t - 1`` segments). They sum to the image.
 
     Returns
     -------
@@ -120,6 +135,12 @@ def render(
         threads = min(threads, os.cpu_count() or threads)
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(SAMPLERS)}")
+    if heuristic not in HEURISTICS:
+        raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
+    if method != "bdpt" and (heuristic != "power" or strategy_images):
+        raise ValueError("heuristic and strategy_images apply to method='bdpt' only")
+    if strategy_images and max_depth < 1:
+        raise ValueError("strategy_images needs a bounded max_depth >= 1")
     if camera is not None and not isinstance(camera, Camera):
         raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
     scene.validate_for_rendering(camera)
@@ -128,7 +149,7 @@ def render(
 
     from dualight import _core
 
-    options = _core.PathTracerOptions(
+    common = dict(
         spp=spp or 0,
         max_depth=max_depth,
         rr_depth=rr_depth,
@@ -137,6 +158,16 @@ def render(
         time_limit=time_limit or 0.0,
         sampler=getattr(_core.SamplerType, sampler),
     )
+    if method == "path":
+        run, options = _core.render_path, _core.PathTracerOptions(**common)
+    elif method == "light":
+        run, options = _core.render_light, _core.LightTracerOptions(**common)
+    else:
+        run, options = _core.render_bdpt, _core.BdptOptions(
+            **common,
+            heuristic=getattr(_core.MisHeuristic, heuristic),
+            strategy_images=strategy_images,
+        )
     bar = None
     callback: ProgressCallback | None
     if progress is True:
@@ -149,15 +180,21 @@ def render(
     else:
         raise TypeError("progress must be True, False or a callable(done, total)")
     try:
-        result = _core.render_path(scene._compile(), cam._compile(), options, callback)
+        result = run(scene._compile(), cam._compile(), options, callback)
     finally:
         if bar is not None:
             bar.close()
 
     stats = dict(result["stats"])
     stats.update(method=method, sampler=sampler, seed=seed, max_depth=max_depth, rr_depth=rr_depth)
+    if method != "path":
+        stats["light_paths"] = result["light_paths"]
+    if method == "bdpt":
+        stats["heuristic"] = heuristic
     stats["threads"] = threads or os.cpu_count()
     image = Image(result["mean"], variance=result["variance"], stats=stats)
+    if strategy_images:
+        image.strategies = dict(result["strategies"])
     if result["keyboard_interrupt"]:
         interrupt = KeyboardInterrupt(f"render interrupted after {stats['samples']} samples")
         interrupt.partial_result = image  # type: ignore[attr-defined]

@@ -4,9 +4,12 @@
 
 #include "bindings/interruptible.h"
 #include "bindings/numpy_util.h"
-#include "pathspace/path_tracer.h"
 #include "core/sampler.h"
+#include "pathspace/bdpt.h"
+#include "pathspace/light_tracer.h"
+#include "pathspace/path_tracer.h"
 #include "pathspace/ray_benchmark.h"
+#include "pathspace/subpath.h"
 
 namespace dualight::bindings {
 
@@ -33,9 +36,23 @@ py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
   d["mean"] = to_numpy(r.film.mean(), {h, w, 3});
   d["variance"] = to_numpy(r.film.variance_of_mean(), {h, w, 3});
   d["counts"] = to_numpy(r.film.sample_counts(), {h, w});
+  d["light_paths"] = r.film.light_paths();
   d["stats"] = stats_dict(r.stats);
   d["keyboard_interrupt"] = keyboard_interrupt;
   return d;
+}
+
+// The options every estimator shares, checked once.
+void check_common(uint32_t spp, int max_depth, int rr_depth, int threads, double time_limit) {
+  if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
+  if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
+  if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
+  if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
+}
+
+void check_emitters(const Scene& scene) {
+  if (scene.emitter_count() == 0) throw py::value_error("scene has no emitter: nothing would be lit");
 }
 
 }  // namespace
@@ -48,11 +65,7 @@ void bind_pathspace(py::module_& m) {
   py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler) {
-             if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
-             if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
-             if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
-             if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
-             if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
+             check_common(spp, max_depth, rr_depth, threads, time_limit);
              return PathTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit, sampler};
            }),
            py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
@@ -70,7 +83,7 @@ void bind_pathspace(py::module_& m) {
       "render_path",
       [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const PathTracerOptions& options,
          const py::object& progress) {
-        if (scene->emitter_count() == 0) throw py::value_error("scene has no emitter: nothing would be lit");
+        check_emitters(*scene);
         RenderControl control;
         auto run = run_interruptible([&] { return render_path(*scene, camera, options, control); }, control,
                                      progress);
@@ -79,6 +92,111 @@ void bind_pathspace(py::module_& m) {
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). "
       "progress(done, total) is called about every 100 ms.");
+
+  py::enum_<MisHeuristic>(m, "MisHeuristic")
+      .value("power", MisHeuristic::Power)
+      .value("balance", MisHeuristic::Balance);
+
+  py::class_<LightTracerOptions>(m, "LightTracerOptions", "Options of the light tracer (keywords only).")
+      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
+                       SamplerType sampler) {
+             check_common(spp, max_depth, rr_depth, threads, time_limit);
+             return LightTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit, sampler};
+           }),
+           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
+           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
+           py::arg("sampler") = SamplerType::Independent);
+
+  py::class_<BdptOptions>(m, "BdptOptions", "Options of bidirectional path tracing (keywords only).")
+      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
+                       SamplerType sampler, MisHeuristic heuristic, bool strategy_images) {
+             check_common(spp, max_depth, rr_depth, threads, time_limit);
+             if (strategy_images && max_depth < 0) {
+               throw py::value_error("strategy_images needs a bounded max_depth (>= 1)");
+             }
+             return BdptOptions{spp,        max_depth, rr_depth,  seed,           threads,
+                                time_limit, sampler,   heuristic, strategy_images};
+           }),
+           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
+           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
+           py::arg("sampler") = SamplerType::Independent, py::arg("heuristic") = MisHeuristic::Power,
+           py::arg("strategy_images") = false);
+
+  m.def(
+      "render_light",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const LightTracerOptions& options,
+         const py::object& progress) {
+        check_emitters(*scene);
+        RenderControl control;
+        auto run = run_interruptible([&] { return render_light(*scene, camera, options, control); }, control,
+                                     progress);
+        return result_dict(std::move(run.result), run.keyboard_interrupt);
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      "Light-traces the scene (spp x pixels particles); returns dict(mean, variance, counts, light_paths, "
+      "stats, keyboard_interrupt).");
+
+  m.def(
+      "render_bdpt",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const BdptOptions& options,
+         const py::object& progress) {
+        check_emitters(*scene);
+        RenderControl control;
+        auto run = run_interruptible([&] { return render_bdpt(*scene, camera, options, control); }, control,
+                                     progress);
+        const Film& film = run.result.film;
+        py::dict strategies;
+        if (options.strategy_images) {
+          const auto pairs = bdpt_strategies(options.max_depth);
+          for (size_t layer = 0; layer < pairs.size(); ++layer) {
+            strategies[py::make_tuple(pairs[layer].first, pairs[layer].second)] =
+                to_numpy(film.layer_mean(layer), {film.height(), film.width(), 3});
+          }
+        }
+        py::dict d = result_dict(std::move(run.result), run.keyboard_interrupt);
+        d["strategies"] = strategies;
+        return d;
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      "Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, "
+      "keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.");
+
+  m.def(
+      "verify_random_subpaths",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, uint32_t count, int max_depth,
+         uint64_t seed) {
+        PathCheck worst;
+        uint64_t rays = 0, vertices = 0, off = 0;
+        Path path;
+        const WalkLimits limits{max_depth, 1 << 30};  // no Russian roulette: beta is recomputable
+        for (uint32_t i = 0; i < count; ++i) {
+          IndependentSampler sampler(seed, 0, i);
+          const bool from_camera = (i & 1u) == 0;
+          if (from_camera) {
+            const Point2 u = sampler.next_2d();
+            camera_subpath(*scene, camera, u.u * camera.width(), u.v * camera.height(), sampler, limits, path,
+                           rays);
+          } else {
+            light_subpath(*scene, sampler, limits, path, rays);
+          }
+          const PathCheck c = verify(camera, path, from_camera);
+          worst.pdf_fwd = std::max(worst.pdf_fwd, c.pdf_fwd);
+          worst.pdf_rev = std::max(worst.pdf_rev, c.pdf_rev);
+          worst.beta = std::max(worst.beta, c.beta);
+          vertices += c.vertices;
+          off += c.off;
+        }
+        py::dict d;
+        d["pdf_fwd"] = worst.pdf_fwd;
+        d["pdf_rev"] = worst.pdf_rev;
+        d["beta"] = worst.beta;
+        d["vertices"] = vertices;
+        d["off"] = off;
+        return d;
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("count"), py::arg("max_depth") = 8, py::arg("seed") = 0,
+      "Builds `count` camera and light subpaths and recomputes their cached densities and throughputs "
+      "(verify()); returns the largest relative differences.");
 
   m.def(
       "sampler_points",

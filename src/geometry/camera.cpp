@@ -21,12 +21,34 @@ PinholeCamera::PinholeCamera(const Vec3& origin, const Vec3& target, const Vec3&
   up_ = cross(right_, forward_);
   tan_half_x_ = std::tan(0.5f * fov_deg * kPi / 180.f);
   tan_half_y_ = tan_half_x_ * static_cast<float>(height) / static_cast<float>(width);
+  inv_pixel_area_ = static_cast<float>(width) * static_cast<float>(height) / (4.f * tan_half_x_ * tan_half_y_);
 }
 
 Ray PinholeCamera::generate_ray(float x, float y) const {
   const float sx = (2.f * x / static_cast<float>(width_) - 1.f) * tan_half_x_;
   const float sy = (1.f - 2.f * y / static_cast<float>(height_)) * tan_half_y_;
   return {origin_, normalize(forward_ + right_ * sx + up_ * sy)};
+}
+
+}  // namespace dualight
+
+namespace dualight {
+
+bool PinholeCamera::raster_position(const Vec3& p, Point2& xy) const {
+  const Vec3 d = p - origin_;
+  const float z = dot(d, forward_);
+  if (!(z > 0.f)) return false;
+  const float sx = dot(d, right_) / (z * tan_half_x_), sy = dot(d, up_) / (z * tan_half_y_);
+  xy = {0.5f * (sx + 1.f) * static_cast<float>(width_), 0.5f * (1.f - sy) * static_cast<float>(height_)};
+  return xy.u >= 0.f && xy.u < static_cast<float>(width_) && xy.v >= 0.f && xy.v < static_cast<float>(height_);
+}
+
+float PinholeCamera::pdf_w(const Vec3& w) const {
+  const float cos_theta = dot(w, forward_);
+  if (!(cos_theta > 0.f)) return 0.f;
+  const float sx = dot(w, right_) / (cos_theta * tan_half_x_), sy = dot(w, up_) / (cos_theta * tan_half_y_);
+  if (!(std::abs(sx) <= 1.f && std::abs(sy) <= 1.f)) return 0.f;
+  return inv_pixel_area_ / (cos_theta * cos_theta * cos_theta);
 }
 
 }  // namespace dualight

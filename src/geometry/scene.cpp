@@ -112,6 +112,12 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
   return !accel_->occluded(Ray{o0, p1 - o0, 1.f}, &filter);
 }
 
+bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
+  const Vec3 d = p1 - p0;
+  const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
+  return !accel_->occluded(Ray{o0, p1 - o0, 1.f - 1e-5f});
+}
+
 EmitterSample Scene::sample_emitter(float u_select, Point2 u) const {
   const size_t i = emitter_distribution_.sample(u_select);
   const uint32_t prim = emissive_[i];

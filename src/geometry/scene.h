@@ -59,6 +59,9 @@ class Scene {
   // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to
   // p1 it stands, so walls that meet the target's surface do not leak.
   bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target) const;
+  // True when nothing lies between p0 (on a surface with normal n0) and p1, a point in free
+  // space such as a pinhole camera.
+  bool visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const;
 
   EmitterSample sample_emitter(float u_select, Point2 u) const;
   // Area density of sample_emitter producing a point on triangle `prim`.

@@ -92,7 +92,7 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
                          RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit};
-  const auto estimate = [&](float x, float y, auto& sampler, uint64_t& rays) {
+  const auto estimate = [&](float x, float y, auto& sampler, uint64_t& rays, SplatList&) {
     return trace_path(scene, camera.generate_ray(x, y), options, sampler, rays);
   };
   switch (options.sampler) {

@@ -24,11 +24,6 @@ struct PathTracerOptions {
   SamplerType sampler = SamplerType::Independent;
 };
 
-struct RenderResult {
-  Film film;
-  RenderStats stats;
-};
-
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                          RenderControl& control);
 

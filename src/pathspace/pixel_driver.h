@@ -11,6 +11,7 @@
 #include "core/render_control.h"
 #include "core/sampler.h"
 #include "film/film.h"
+#include "film/splat_list.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
@@ -20,10 +21,13 @@ struct PixelDriverOptions {
   uint64_t seed = 0;
   int threads = 0;
   double time_limit = 0.0;
+  bool light_paths = false;  // every sample also traces one light path that may splat
 };
 
-// estimate(x, y, sampler, rays) returns the sample value for film position (x, y) in pixels and
-// adds the rays it traced to `rays`. The film position uses the sampler's first 2D sample.
+// estimate(x, y, sampler, rays, splats) returns the sample value for film position (x, y) in
+// pixels, adds the rays it traced to `rays` and its light path's splats to `splats`. The film
+// position uses the sampler's first 2D sample. Each tile collects its splats in a list of its own;
+// the lists are added to the film in tile order after every pass.
 template <class Sampler, class Estimate>
 RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderControl& control,
                          const Estimate& estimate) {
@@ -37,6 +41,9 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   control.total.store(unbounded ? 0 : n_pixels * opt.spp);
 
   std::atomic<uint64_t> rays{0}, invalid{0};
+  std::vector<SplatList> tile_splats(opt.light_paths ? n_tiles : 0);
+  std::vector<uint64_t> tile_samples(n_tiles, 0);
+  SplatList no_splats;  // estimators without light paths never add to it
   RenderStats stats;
   const auto start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -54,6 +61,9 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
       const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
       uint64_t local_rays = 0, local_invalid = 0;
+      SplatList& splats = opt.light_paths ? tile_splats[tile] : no_splats;
+      splats.clear();
+      tile_samples[tile] = 0;
       for (int y = y0; y < std::min(y0 + kTile, h); ++y) {
         for (int x = x0; x < std::min(x0 + kTile, w); ++x) {
           if (control.cancelled()) break;
@@ -61,20 +71,29 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
           for (uint32_t s = first; s < first + count; ++s) {
             Sampler sampler(opt.seed, pixel, s);
             const Point2 jitter = sampler.next_2d();
+            splats.begin_path();
             Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler,
-                                   local_rays);
+                                   local_rays, splats);
+            splats.end_path();
             if (!is_finite(value)) {
               value = Color(0.f);
               ++local_invalid;
             }
             film.add_sample(pixel, value);
           }
+          tile_samples[tile] += count;
           control.done.fetch_add(count, std::memory_order_relaxed);
         }
       }
       rays.fetch_add(local_rays, std::memory_order_relaxed);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
+    if (opt.light_paths) {
+      for (size_t tile = 0; tile < n_tiles; ++tile) {
+        film.add_splats(tile_splats[tile], tile_samples[tile]);
+        invalid.fetch_add(tile_splats[tile].invalid(), std::memory_order_relaxed);
+      }
+    }
     if (control.cancelled()) break;
     spp_done += count;
     // Aim for passes of about a quarter second so time limits and progress stay responsive.

@@ -2,6 +2,8 @@
 #pragma once
 #include <cstdint>
 
+#include "film/film.h"
+
 namespace dualight {
 
 struct RenderStats {
@@ -12,6 +14,11 @@ struct RenderStats {
   double seconds = 0.0;
   bool interrupted = false;
   bool time_limited = false;     // stopped by time_limit before reaching spp
+};
+
+struct RenderResult {
+  Film film;
+  RenderStats stats;
 };
 
 }  // namespace dualight

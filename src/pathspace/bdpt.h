@@ -1,0 +1,43 @@
+// Bidirectional path tracing [Veach and Guibas 1995; Veach 1997, ch. 10]: for every pixel sample
+// one camera subpath and one light subpath, and every way of joining them — s light vertices and
+// t camera vertices, s >= 0, t >= 1 — weighted by multiple importance sampling (power heuristic
+// by default, or balance). t = 1 strategies are light tracing: they splat onto the film wherever
+// the light vertex projects. Depths count segments as in Mitsuba (max_depth = 1: emitters seen
+// directly; -1: unbounded, then Russian roulette from rr_depth ends subpaths). Use it where paths
+// are hard to find from one side: caustics (light -> specular -> diffuse -> eye) and light
+// arriving through small openings.
+#pragma once
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/render_control.h"
+#include "core/sampler.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/mis_weight.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+struct BdptOptions {
+  uint32_t spp = 64;  // 0 = unbounded (then time_limit must be set)
+  int max_depth = -1;
+  int rr_depth = 5;
+  uint64_t seed = 0;
+  int threads = 0;
+  double time_limit = 0.0;
+  SamplerType sampler = SamplerType::Independent;
+  MisHeuristic heuristic = MisHeuristic::Power;
+  // One extra film layer per strategy holding its MIS-weighted contributions, which sum to the
+  // image (needs a bounded max_depth).
+  bool strategy_images = false;
+};
+
+// The strategies of paths with 1..max_depth segments, in layer order: by depth, then by t.
+std::vector<std::pair<int, int>> bdpt_strategies(int max_depth);
+
+RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
+                         RenderControl& control);
+
+}  // namespace dualight

@@ -1,0 +1,80 @@
+// The unweighted contribution of one BDPT strategy (s light vertices, t camera vertices)
+// [Veach 1997, eq. 10.8; pbrt-v3 sec. 16.3.3]:
+//   s = 0   the camera subpath's last vertex is on an emitter;
+//   t = 1   the light subpath's last vertex is connected to the camera and lands on the film at
+//           `raster` (light tracing);
+//   s = 1   the camera subpath's last vertex is connected to a freshly sampled emitter point
+//           (next-event estimation), which is returned in `sampled`;
+//   else    the two last vertices are connected by a shadow ray.
+// The value is beta_light * f(q_s) * G(q_s, p_t) * f(p_t) * beta_camera; at the camera, f is the
+// importance We and G has no camera cosine (pinhole).
+#pragma once
+#include "pathspace/path.h"
+
+namespace dualight {
+
+// Vertex standing for the pinhole camera in t = 1 connections.
+inline Vertex camera_vertex(const PinholeCamera& camera) {
+  Vertex c;
+  c.type = VertexType::Camera;
+  c.p = camera.origin();
+  c.n = camera.forward();
+  c.beta = Color(1.f);
+  return c;
+}
+
+// t = 1: the light subpath vertex qs seen by the camera.
+inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, const Vertex& qs, Point2& raster,
+                               uint64_t& rays) {
+  if (!qs.connectible() || !camera.raster_position(qs.p, raster)) return Color(0.f);
+  const Vec3 d = camera.origin() - qs.p;
+  const float dist2 = dot(d, d);
+  const Vec3 w = d / std::sqrt(dist2);
+  const Color f = qs.type == VertexType::Light ? emitted_towards(qs, camera.origin())
+                                               : scattering(qs, camera.origin(), TransportMode::Importance);
+  const Color L = qs.beta * f * (camera.pdf_w(-w) * std::abs(dot(qs.n, w)) / dist2);
+  if (is_black(L)) return L;
+  ++rays;
+  return scene.visible_point(qs.p, qs.n, camera.origin()) ? L : Color(0.f);
+}
+
+template <class Sampler>
+Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam, int s, int t,
+              Sampler& sampler, Vertex& sampled, Point2& raster, uint64_t& rays) {
+  if (s == 0) {
+    const Vertex& pt = cam[t - 1];
+    return pt.is_emitter() ? pt.beta * emitted_towards(pt, cam[t - 2].p) : Color(0.f);
+  }
+  if (t == 1) {
+    sampled = camera_vertex(camera);
+    return connect_to_camera(scene, camera, light[s - 1], raster, rays);
+  }
+  const Vertex& pt = cam[t - 1];
+  if (!pt.connectible()) return Color(0.f);
+  if (s == 1) {
+    const float u_select = sampler.next_1d();
+    const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
+    sampled = Vertex{};
+    sampled.type = VertexType::Light;
+    sampled.p = es.p;
+    sampled.n = es.n;
+    sampled.prim = es.prim;
+    sampled.material = &scene.material(es.prim);
+    sampled.beta = Color(1.f / es.pdf_a);
+    sampled.pdf_fwd = es.pdf_a;
+  }
+  const Vertex& qs = s == 1 ? sampled : light[s - 1];
+  if (!qs.connectible()) return Color(0.f);
+  const Vec3 d = qs.p - pt.p;
+  const float dist2 = dot(d, d);
+  if (!(dist2 > 0.f)) return Color(0.f);
+  const Vec3 w = d / std::sqrt(dist2);
+  const float G = std::abs(dot(pt.n, w)) * std::abs(dot(qs.n, w)) / dist2;
+  const Color fq = s == 1 ? emitted_towards(qs, pt.p) : scattering(qs, pt.p, TransportMode::Importance);
+  const Color L = qs.beta * fq * pt.beta * scattering(pt, qs.p, TransportMode::Radiance) * G;
+  if (is_black(L)) return L;
+  ++rays;
+  return scene.visible(pt.p, pt.n, qs.p, qs.prim) ? L : Color(0.f);
+}
+
+}  // namespace dualight

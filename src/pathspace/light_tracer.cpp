@@ -1,0 +1,119 @@
+#include "pathspace/light_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <vector>
+
+#include "core/parallel.h"
+#include "film/splat_list.h"
+#include "pathspace/connect.h"
+#include "pathspace/subpath.h"
+
+namespace dualight {
+
+namespace {
+
+// Particles are traced in chunks of a fixed size, each chunk's splats kept apart and added to the
+// film in chunk order: the image does not depend on the thread count or schedule.
+constexpr uint64_t kChunk = 4096;
+// Particle i's random numbers: the sampler's "pixel" slot names the particle stream, its sample
+// index is i, so a Sobol sampler stratifies over all particles.
+constexpr uint64_t kParticleStream = 0x9a3f'6c21'0b7d'e584ull;
+
+template <class Sampler>
+void trace_particle(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt, uint64_t index,
+                    Path& path, SplatList& splats, uint64_t& rays) {
+  Sampler sampler(opt.seed, kParticleStream ^ (index >> 32), static_cast<uint32_t>(index));
+  light_subpath(scene, sampler, WalkLimits{opt.max_depth, opt.rr_depth}, path, rays);
+  splats.begin_path();
+  for (const Vertex& v : path) {
+    Point2 raster{};
+    const Color c = connect_to_camera(scene, camera, v, raster, rays);
+    if (is_black(c)) continue;
+    splats.add(static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u), c);
+  }
+  splats.end_path();
+}
+
+template <class Sampler>
+RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt,
+                            Film& film, RenderControl& control) {
+  using Clock = std::chrono::steady_clock;
+  const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
+  const bool unbounded = opt.spp == 0;
+  const uint64_t target = unbounded ? 0 : pixels * opt.spp;
+  control.total.store(target);
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  RenderStats stats;
+  std::atomic<uint64_t> rays{0};
+  uint64_t invalid = 0;
+  uint64_t traced = 0;
+  uint64_t pass_chunks = 4;
+  std::vector<SplatList> chunk_splats;
+  std::vector<uint64_t> chunk_particles;
+  while ((unbounded || traced < target) && !control.cancelled()) {
+    if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
+      stats.time_limited = true;
+      break;
+    }
+    const uint64_t remaining_chunks = unbounded ? pass_chunks : (target - traced + kChunk - 1) / kChunk;
+    const size_t n_chunks = static_cast<size_t>(std::min(pass_chunks, remaining_chunks));
+    chunk_splats.resize(n_chunks);
+    chunk_particles.assign(n_chunks, 0);
+    const double pass_start = elapsed();
+    parallel_for_each_index(opt.threads, n_chunks, [&](size_t chunk) {
+      const uint64_t first = traced + chunk * kChunk;
+      const uint64_t last = unbounded ? first + kChunk : std::min(first + kChunk, target);
+      SplatList& splats = chunk_splats[chunk];
+      splats.clear();
+      Path path;
+      uint64_t local_rays = 0;
+      for (uint64_t i = first; i < last; ++i) {
+        if ((i & 255u) == 0 && control.cancelled()) break;
+        trace_particle<Sampler>(scene, camera, opt, i, path, splats, local_rays);
+        ++chunk_particles[chunk];
+      }
+      rays.fetch_add(local_rays, std::memory_order_relaxed);
+      control.done.fetch_add(chunk_particles[chunk], std::memory_order_relaxed);
+    });
+    // A cancelled pass keeps only its complete prefix of chunks, so the particle count is exact.
+    for (size_t chunk = 0; chunk < n_chunks; ++chunk) {
+      film.add_splats(chunk_splats[chunk], chunk_particles[chunk]);
+      invalid += chunk_splats[chunk].invalid();
+      traced += chunk_particles[chunk];
+      if (chunk_particles[chunk] < kChunk && traced != target) break;
+    }
+    if (control.cancelled()) break;
+    // Aim for passes of about a quarter second so time limits and progress stay responsive.
+    const double per_chunk = std::max(elapsed() - pass_start, 1e-6) / static_cast<double>(n_chunks);
+    pass_chunks = static_cast<uint64_t>(std::clamp(0.25 / per_chunk, 1.0, 65536.0));
+  }
+  stats.seconds = elapsed();
+  stats.rays = rays.load();
+  stats.invalid_samples = invalid;
+  stats.interrupted = control.cancelled();
+  stats.samples = traced;
+  stats.spp = static_cast<uint32_t>(traced / pixels);
+  return stats;
+}
+
+}  // namespace
+
+RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
+                          RenderControl& control) {
+  RenderResult result{Film(camera.width(), camera.height()), {}};
+  switch (options.sampler) {
+    case SamplerType::Independent:
+      result.stats = drive_particles<IndependentSampler>(scene, camera, options, result.film, control);
+      break;
+    case SamplerType::Sobol:
+      result.stats = drive_particles<SobolSampler>(scene, camera, options, result.film, control);
+      break;
+  }
+  return result;
+}
+
+}  // namespace dualight

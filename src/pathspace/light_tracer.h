@@ -1,0 +1,31 @@
+// Light (particle) tracing: the adjoint of path tracing. Particles leave the emitters with
+// importance-weighted power and every non-delta vertex they reach is connected to the camera and
+// splatted onto the film, estimating W = We + T* W's measurement <Le, W> [Veach 1997, sec. 4.5 and
+// 10.2, strategy t = 1; Pattanaik 1993]. As in Mitsuba's `ptracer`, spp x pixels particles are
+// traced. It cannot see paths whose vertex next to the camera is specular (a mirror or glass seen
+// directly): those pixels lack that light. Depths count segments as in the path tracer.
+#pragma once
+#include <cstdint>
+
+#include "core/render_control.h"
+#include "core/sampler.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+struct LightTracerOptions {
+  uint32_t spp = 64;  // particles per pixel; 0 = unbounded (then time_limit must be set)
+  int max_depth = -1;
+  int rr_depth = 5;
+  uint64_t seed = 0;
+  int threads = 0;
+  double time_limit = 0.0;
+  SamplerType sampler = SamplerType::Independent;
+};
+
+RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
+                          RenderControl& control);
+
+}  // namespace dualight

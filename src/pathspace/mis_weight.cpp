@@ -1,0 +1,46 @@
+#include "pathspace/mis_weight.h"
+
+namespace dualight {
+
+float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
+                 const Vertex& sampled, int s, int t, MisHeuristic heuristic) {
+  if (s + t == 2) return 1.f;  // the only strategy kept for paths of one segment
+  const Vertex* qs = s == 0 ? nullptr : (s == 1 ? &sampled : &light[s - 1]);
+  const Vertex& pt = t == 1 ? sampled : cam[t - 1];
+  const Vertex* qs_minus = s >= 2 ? &light[s - 2] : nullptr;
+  const Vertex* pt_minus = t >= 2 ? &cam[t - 2] : nullptr;
+
+  // Reverse densities at the connection under this strategy.
+  const float pt_rev = qs != nullptr ? pdf_area(camera, *qs, qs_minus, pt) : pdf_light_origin(scene, pt);
+  float pt_minus_rev = 0.f;
+  if (pt_minus != nullptr) pt_minus_rev = qs != nullptr ? pdf_area(camera, pt, qs, *pt_minus) : pdf_light(pt, *pt_minus);
+  const float qs_rev = qs != nullptr ? pdf_area(camera, pt, pt_minus, *qs) : 0.f;
+  const float qs_minus_rev = qs_minus != nullptr ? pdf_area(camera, *qs, &pt, *qs_minus) : 0.f;
+
+  const auto remap0 = [](float pdf) { return pdf != 0.f ? pdf : 1.f; };
+  const auto h = [heuristic](float r) { return heuristic == MisHeuristic::Power ? r * r : r; };
+
+  float sum = 0.f;
+  // Strategies with fewer camera vertices: move the connection towards the camera. The camera
+  // itself (i = 0) cannot be hit by a light subpath.
+  float ratio = 1.f;
+  for (int i = t - 1; i > 0; --i) {
+    const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : cam[i].pdf_rev);
+    ratio *= remap0(rev) / remap0(cam[i].pdf_fwd);
+    const bool delta_i = i != t - 1 && cam[i].delta;  // the connection vertex is never delta
+    if (!delta_i && !cam[i - 1].delta) sum += h(ratio);
+  }
+  // Strategies with fewer light vertices: move the connection towards the emitter.
+  ratio = 1.f;
+  for (int i = s - 1; i >= 0; --i) {
+    const Vertex& v = (s == 1 && i == 0) ? sampled : light[i];
+    const float rev = i == s - 1 ? qs_rev : (i == s - 2 ? qs_minus_rev : light[i].pdf_rev);
+    ratio *= remap0(rev) / remap0(v.pdf_fwd);
+    const bool delta_i = i != s - 1 && light[i].delta;
+    const bool delta_before = i > 0 && light[i - 1].delta;  // area emitters are not delta
+    if (!delta_i && !delta_before) sum += h(ratio);
+  }
+  return 1.f / (1.f + sum);
+}
+
+}  // namespace dualight

@@ -1,0 +1,103 @@
+#include "pathspace/path.h"
+
+#include <algorithm>
+
+#include "core/frame.h"
+
+namespace dualight {
+
+Color scattering(const Vertex& v, const Vec3& next, TransportMode mode) {
+  const Frame frame = Frame::from_normal(v.n);
+  return eval_f(v.material->bsdf, frame.to_local(v.wo), frame.to_local(normalize(next - v.p)), mode);
+}
+
+float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next) {
+  const Vec3 w = normalize(next.p - v.p);
+  float pdf_w = 0.f;
+  switch (v.type) {
+    case VertexType::Camera:
+      pdf_w = camera.pdf_w(w);
+      break;
+    case VertexType::Light:
+      pdf_w = cosine_hemisphere_pdf(dot(v.n, w));
+      break;
+    case VertexType::Surface: {
+      const Frame frame = Frame::from_normal(v.n);
+      const Vec3 wo = frame.to_local(normalize(prev->p - v.p));
+      pdf_w = dualight::pdf_w(v.material->bsdf, wo, frame.to_local(w), TransportMode::Radiance);
+      break;
+    }
+  }
+  return solid_angle_to_area(pdf_w, v, next);
+}
+
+float pdf_light_origin(const Scene& scene, const Vertex& v) { return scene.emitter_pdf_a(v.prim); }
+
+float pdf_light(const Vertex& v, const Vertex& next) {
+  return solid_angle_to_area(cosine_hemisphere_pdf(dot(v.n, normalize(next.p - v.p))), v, next);
+}
+
+// Recomputes from the stored directions (wo), as the walk evaluated its densities at the directions
+// it sampled; distances and cosines at the receiving vertex come from positions, as in the walk.
+// (Directions from positions differ by the ray-origin offset, up to 1e-2 relative near corners.)
+PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera) {
+  PathCheck check;
+  check.vertices = path.size();
+  const TransportMode mode = from_camera ? TransportMode::Radiance : TransportMode::Importance;
+  // Solid-angle density with which vertex u, reached along u.wo, samples direction w.
+  const auto pdf_w_at = [&](const Vertex& u, const Vec3& w) {
+    switch (u.type) {
+      case VertexType::Camera:
+        return camera.pdf_w(w);
+      case VertexType::Light:
+        return cosine_hemisphere_pdf(dot(u.n, w));
+      case VertexType::Surface:
+        break;
+    }
+    const Frame frame = Frame::from_normal(u.n);
+    return dualight::pdf_w(u.material->bsdf, frame.to_local(u.wo), frame.to_local(w), mode);
+  };
+  const auto record = [&](float& worst, float cached, float recomputed) {
+    const float scale = std::max(std::abs(cached), std::abs(recomputed));
+    const float error = scale > 0.f ? std::abs(cached - recomputed) / scale : 0.f;
+    worst = std::max(worst, error);
+    check.off += error > 1e-3f;
+  };
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vertex& prev = path[i - 1];
+    const Vertex& v = path[i];
+    const Vec3 w = -v.wo;  // the direction prev sampled
+    // Delta scattering stores 0 (its density is a discrete probability, not a density).
+    record(check.pdf_fwd, v.pdf_fwd, prev.delta ? 0.f : solid_angle_to_area(pdf_w_at(prev, w), prev, v));
+    // v's reverse density comes from sampling at i + 1 having arrived from i + 2.
+    if (i + 2 < path.size()) {
+      const Vertex& next = path[i + 1];
+      const Vertex& after = path[i + 2];
+      float pdf = 0.f;
+      if (!next.delta) {
+        const Frame frame = Frame::from_normal(next.n);
+        pdf = dualight::pdf_w(next.material->bsdf, frame.to_local(-after.wo), frame.to_local(next.wo), mode);
+      }
+      record(check.pdf_rev, v.pdf_rev, solid_angle_to_area(pdf, next, v));
+    }
+    // beta(i) = beta(i - 1) * f |cos| / pdf_w at i - 1; at the subpath's start the factor is the
+    // camera's We / pdf = 1, or the emitter's Le |cos| / pdf_w.
+    Color factor(1.f);
+    if (prev.type == VertexType::Light) {
+      factor = emitted_towards(prev, v.p) * (dot(prev.n, w) / pdf_w_at(prev, w));
+    } else if (prev.type == VertexType::Surface) {
+      if (prev.delta) continue;  // the discrete lobe's weight is not a density ratio
+      const Frame frame = Frame::from_normal(prev.n);
+      const Vec3 wo = frame.to_local(prev.wo), wi = frame.to_local(w);
+      factor = eval_f(prev.material->bsdf, wo, wi, mode) * (std::abs(wi.z) / pdf_w_at(prev, w));
+    }
+    const Color beta = prev.beta * factor;
+    for (int c = 0; c < 3; ++c) {
+      const float scale = std::max(std::abs(v.beta[c]), std::abs(beta[c]));
+      if (scale > 0.f) check.beta = std::max(check.beta, std::abs(v.beta[c] - beta[c]) / scale);
+    }
+  }
+  return check;
+}
+
+}  // namespace dualight

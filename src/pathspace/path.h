@@ -1,0 +1,81 @@
+// Path vertices with densities in area measure, as bidirectional estimators need them
+// [Veach 1997, ch. 10; pbrt-v3 sec. 16.3]. A subpath starts at the camera or at an emitter;
+// vertex i stores
+//   beta     the throughput of the subpath up to vertex i (the estimate's factor before i's own
+//            scattering): 1 at the camera, 1 / pdf_a at an emitter, then times f |cos| / pdf;
+//   pdf_fwd  the area density with which the subpath's own sampling generated vertex i;
+//   pdf_rev  the area density with which sampling in the other direction (from i + 1, having come
+//            from i + 2) would generate vertex i;
+//   delta    vertex i scattered by a Dirac lobe (no connection can end there).
+// Delta scattering stores 0 in the affected densities; MIS ratios read 0 as 1 (pbrt's remap0)
+// and skip strategies that would connect at a delta vertex.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+
+namespace dualight {
+
+enum class VertexType : uint8_t { Camera, Light, Surface };
+
+struct Vertex {
+  VertexType type = VertexType::Surface;
+  Vec3 p;                  // position
+  Vec3 n;                  // geometric normal; the view direction at the camera
+  Vec3 wo;                 // unit direction to the previous vertex of the subpath (0 at its start)
+  uint32_t prim = 0;
+  const Material* material = nullptr;
+  Color beta;
+  float pdf_fwd = 0.f, pdf_rev = 0.f;
+  bool delta = false;
+
+  bool on_surface() const { return type != VertexType::Camera; }
+  bool is_emitter() const { return material != nullptr && !is_black(material->emission); }
+  // A connection (shadow ray) can end here: not at a delta BSDF.
+  bool connectible() const { return type != VertexType::Surface || !is_delta(material->bsdf); }
+};
+
+using Path = std::vector<Vertex>;
+
+// Area density at `to` of a solid-angle density at `from` towards `to`.
+inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& to) {
+  const Vec3 d = to.p - from.p;
+  const float inv_dist2 = 1.f / dot(d, d);
+  float pdf = pdf_w * inv_dist2;
+  if (to.on_surface()) pdf *= std::abs(dot(to.n, d)) * std::sqrt(inv_dist2);
+  return pdf;
+}
+
+// Radiance an emitter vertex sends towards `to` (one-sided emitters).
+inline Color emitted_towards(const Vertex& v, const Vec3& to) {
+  return dot(v.n, to - v.p) > 0.f ? v.material->emission : Color(0.f);
+}
+
+// The BSDF of surface vertex v from direction of `prev` (its wo) to `next`, in `mode`; f only,
+// the cosine belongs to the geometry term.
+Color scattering(const Vertex& v, const Vec3& next, TransportMode mode);
+
+// Area density at `next` of sampling from v, which was reached from `prev` (unused at the ends of
+// a subpath): the camera's direction density, an emitter's cosine lobe, or v's BSDF.
+float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next);
+
+// Emitter-side densities of an emitter point v as the start of a light subpath: of picking v
+// (area measure), and of emitting from v towards `next` (area measure at next).
+float pdf_light_origin(const Scene& scene, const Vertex& v);
+float pdf_light(const Vertex& v, const Vertex& next);
+
+// Largest relative differences between a subpath's cached quantities and their recomputation
+// from its positions and materials (for tests; 0 for an exact path).
+struct PathCheck {
+  float pdf_fwd = 0.f, pdf_rev = 0.f, beta = 0.f;
+  size_t vertices = 0;
+  // Values off by more than 1e-3 relative: float rounding gets there only at grazing angles.
+  size_t off = 0;
+};
+// `from_camera`: a camera subpath (else a light subpath). Russian roulette must be off (it
+// scales beta by factors not recorded in the path).
+PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera);
+
+}  // namespace dualight

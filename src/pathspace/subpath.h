@@ -1,0 +1,124 @@
+// Random walks that build camera and light subpaths with their area densities
+// [Veach 1997, sec. 10.2; pbrt-v3 sec. 16.3.1-16.3.2]. Depths count segments as in Mitsuba:
+// a camera subpath has at most max_depth + 1 vertices (camera included), a light subpath at most
+// max_depth (emitter included), so every strategy's path has at most max_depth segments.
+// Russian roulette starts at the vertex with index rr_depth (segments from the subpath's start)
+// and only rescales beta: MIS weights stay functions of the path, so the estimate stays unbiased.
+#pragma once
+#include <algorithm>
+#include <limits>
+
+#include "core/frame.h"
+#include "pathspace/path.h"
+
+namespace dualight {
+
+struct WalkLimits {
+  int max_depth = -1;  // segments; -1 = unbounded
+  int rr_depth = 5;
+};
+
+namespace subpath_detail {
+
+// Extends `path` from its last vertex along `ray`, which was sampled with solid-angle density
+// pdf_w; at most `max_new` vertices are added.
+template <class Sampler>
+void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
+                 int rr_depth, TransportMode mode, Path& path, uint64_t& rays) {
+  Color throughput(1.f);  // beta without the start's emission, for Russian roulette
+  for (size_t added = 0; added < max_new; ++added) {
+    SurfaceHit hit;
+    ++rays;
+    if (!scene.intersect(ray, hit)) return;
+    Vertex v;
+    v.type = VertexType::Surface;
+    v.p = hit.p;
+    v.n = hit.n;
+    v.wo = -ray.d;
+    v.prim = hit.prim;
+    v.material = hit.material;
+    v.beta = beta;
+    v.pdf_fwd = solid_angle_to_area(pdf_w, path.back(), v);
+    path.push_back(v);
+    if (added + 1 == max_new) return;
+
+    Vertex& cur = path.back();
+    const Frame frame = Frame::from_normal(cur.n);
+    const Vec3 wo = frame.to_local(cur.wo);
+    BsdfSample bs;
+    if (!sample(cur.material->bsdf, wo, sampler.next_2d(), mode, bs)) return;
+    float pdf_rev_w = 0.f;
+    if (bs.delta) {
+      cur.delta = true;
+      pdf_w = 0.f;
+    } else {
+      pdf_w = bs.pdf_w;
+      pdf_rev_w = dualight::pdf_w(cur.material->bsdf, bs.wi, wo, mode);
+    }
+    beta *= bs.weight;
+    throughput *= bs.weight;
+    Vertex& prev = path[path.size() - 2];
+    prev.pdf_rev = solid_angle_to_area(pdf_rev_w, cur, prev);
+
+    if (static_cast<int>(path.size()) - 1 >= rr_depth) {
+      const float q = std::min(max_component(throughput), 0.95f);
+      if (!(sampler.next_1d() < q)) return;
+      beta /= q;
+      throughput /= q;
+    }
+    ray = Ray{offset_ray_origin(cur.p, bs.wi.z > 0.f ? cur.n : -cur.n), frame.to_world(bs.wi)};
+  }
+}
+
+inline size_t max_vertices(int max_depth, int extra) {
+  return max_depth < 0 ? std::numeric_limits<size_t>::max() : static_cast<size_t>(max_depth + extra);
+}
+
+}  // namespace subpath_detail
+
+// The camera subpath through film position (x, y): the camera vertex, then surface vertices.
+template <class Sampler>
+void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, float y, Sampler& sampler,
+                    const WalkLimits& limits, Path& path, uint64_t& rays) {
+  path.clear();
+  const Ray ray = camera.generate_ray(x, y);
+  Vertex c;
+  c.type = VertexType::Camera;
+  c.p = ray.o;
+  c.n = camera.forward();
+  c.beta = Color(1.f);  // We / pdf = 1: camera rays sample importance exactly
+  path.push_back(c);
+  const size_t max_new = subpath_detail::max_vertices(limits.max_depth, 1) - 1;
+  subpath_detail::random_walk(scene, ray, sampler, Color(1.f), camera.pdf_w(ray.d), max_new, limits.rr_depth,
+                              TransportMode::Radiance, path, rays);
+}
+
+// A light subpath: a point on an emitter chosen by power, then a cosine-distributed direction
+// from its front side.
+template <class Sampler>
+void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limits, Path& path, uint64_t& rays) {
+  path.clear();
+  const size_t max_vertices = subpath_detail::max_vertices(limits.max_depth, 0);
+  if (max_vertices == 0) return;
+  const float u_select = sampler.next_1d();
+  const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
+  Vertex l;
+  l.type = VertexType::Light;
+  l.p = es.p;
+  l.n = es.n;
+  l.prim = es.prim;
+  l.material = &scene.material(es.prim);
+  l.beta = Color(1.f / es.pdf_a);
+  l.pdf_fwd = es.pdf_a;
+  path.push_back(l);
+  const Vec3 local = square_to_cosine_hemisphere(sampler.next_2d());
+  const float pdf_dir = cosine_hemisphere_pdf(local.z);
+  if (!(pdf_dir > 0.f)) return;
+  const Vec3 d = Frame::from_normal(es.n).to_world(local);
+  // beta = Le |cos| / (pdf_a pdf_dir) = Le pi / pdf_a
+  const Color beta = es.Le * (kPi / es.pdf_a);
+  subpath_detail::random_walk(scene, Ray{offset_ray_origin(es.p, es.n), d}, sampler, beta, pdf_dir,
+                              max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, rays);
+}
+
+}  // namespace dualight
