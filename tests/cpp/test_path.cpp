@@ -1,0 +1,99 @@
+// Camera importance and projection, and verify() on subpaths: it must find nothing wrong with
+// the walks' own bookkeeping and must notice a tampered density or throughput.
+#include <cmath>
+
+#include "check.h"
+#include "core/sampler.h"
+#include "pathspace/path.h"
+#include "pathspace/subpath.h"
+
+using namespace dualight;
+
+namespace {
+
+// The unit cube seen from inside (normals inward), with an emitting triangle under its ceiling.
+Scene closed_box() {
+  std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                             3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+  // Emitter at y = 0.95 facing down (-y).
+  const uint32_t base = static_cast<uint32_t>(p.size() / 3);
+  for (const float v : {0.4f, 0.95f, 0.4f, 0.6f, 0.95f, 0.4f, 0.5f, 0.95f, 0.6f}) p.push_back(v);
+  for (const uint32_t i : {base, base + 1, base + 2}) t.push_back(i);
+  std::vector<uint32_t> m(t.size() / 3, 0);
+  m.back() = 1;
+  return Scene(std::move(p), std::move(t), std::move(m),
+               {Material{Lambertian{Color(0.7f, 0.5f, 0.3f)}, Color(0.f)},
+                Material{Lambertian{Color(0.2f)}, Color(5.f)}});
+}
+
+const PinholeCamera kCamera({0.5f, 0.5f, 0.05f}, {0.5f, 0.5f, 1.f}, {0, 1, 0}, 60.f, 32, 24);
+
+}  // namespace
+
+TEST_CASE(camera_projection_inverts_generate_ray) {
+  for (const Point2 xy : {Point2{0.5f, 0.5f}, Point2{31.2f, 3.7f}, Point2{16.f, 12.f}, Point2{7.3f, 23.9f}}) {
+    const Ray r = kCamera.generate_ray(xy.u, xy.v);
+    Point2 back{};
+    CHECK(kCamera.raster_position(r.o + r.d * 3.f, back));
+    CHECK_NEAR(back.u, xy.u, 1e-3f);
+    CHECK_NEAR(back.v, xy.v, 1e-3f);
+  }
+  Point2 unused{};
+  CHECK(!kCamera.raster_position({0.5f, 0.5f, -1.f}, unused));  // behind
+  CHECK(!kCamera.raster_position({5.f, 0.5f, 1.f}, unused));    // outside the field of view
+}
+
+TEST_CASE(camera_importance_integrates_to_one_per_pixel) {
+  // We = 1 / (A_pixel cos^3): integrate it over one pixel's solid angle numerically.
+  const int n = 64;
+  double integral = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const float x = 20.f + (i + 0.5f) / n, y = 5.f + (j + 0.5f) / n;
+      const Vec3 d00 = kCamera.generate_ray(x - 0.5f / n, y - 0.5f / n).d;
+      const Vec3 d11 = kCamera.generate_ray(x + 0.5f / n, y + 0.5f / n).d;
+      const Vec3 d01 = kCamera.generate_ray(x - 0.5f / n, y + 0.5f / n).d;
+      const Vec3 d10 = kCamera.generate_ray(x + 0.5f / n, y - 0.5f / n).d;
+      // Solid angle of the little cell: two spherical triangles, approximated by flat ones.
+      const double omega = 0.5 * (length(cross(d10 - d00, d01 - d00)) + length(cross(d10 - d11, d01 - d11)));
+      integral += kCamera.pdf_w(kCamera.generate_ray(x, y).d) * omega;
+    }
+  }
+  CHECK_NEAR(integral, 1.0, 1e-3);
+  CHECK(kCamera.pdf_w(Vec3(0, 0, -1)) == 0.f);
+}
+
+TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
+  const Scene scene = closed_box();
+  const WalkLimits limits{8, 1 << 30};
+  uint64_t rays = 0;
+  Path path;
+  size_t checked = 0;
+  for (uint32_t i = 0; i < 200; ++i) {
+    IndependentSampler sampler(1, 0, i);
+    const bool from_camera = i % 2 == 0;
+    if (from_camera) {
+      camera_subpath(scene, kCamera, 16.f, 12.f, sampler, limits, path, rays);
+    } else {
+      light_subpath(scene, sampler, limits, path, rays);
+    }
+    const PathCheck ok = verify(kCamera, path, from_camera);
+    CHECK(ok.off == 0);
+    CHECK(ok.pdf_fwd < 1e-4f && ok.pdf_rev < 1e-4f && ok.beta < 1e-4f);
+    if (path.size() < 4) continue;
+    ++checked;
+    Path bad = path;
+    bad[2].pdf_fwd *= 1.01f;
+    CHECK(verify(kCamera, bad, from_camera).pdf_fwd > 0.009f);
+    bad = path;
+    bad[1].pdf_rev *= 0.98f;
+    CHECK(verify(kCamera, bad, from_camera).pdf_rev > 0.019f);
+    bad = path;
+    bad[3].beta *= 1.02f;
+    CHECK(verify(kCamera, bad, from_camera).beta > 0.019f);
+    // Evaluating a subpath in the other transport mode must not matter for diffuse surfaces.
+    CHECK(verify(kCamera, path, !from_camera).off == 0);
+  }
+  CHECK(checked > 50);
+}
