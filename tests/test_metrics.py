@@ -236,3 +236,25 @@ def test_compare_biased_fails() -> None:
     assert not c.passed
     assert c.blocks.pass_fraction < 0.9975
     assert str(c).startswith("FAIL")
+
+
+def test_mask_leaves_out_pixels_and_blocks() -> None:
+    rng = np.random.default_rng(3)
+    ref = rng.uniform(0.2, 0.8, (32, 32, 3))
+    var = np.full_like(ref, 1e-5)
+    image = ref + rng.normal(0.0, 3e-3, ref.shape)
+    image[:8, :8] += 0.5  # a region the estimator is not meant to render
+    full = metrics.compare(image, var, ref, var)
+    assert not full.passed and full.blocks.pass_fraction < 1.0
+    mask = np.ones((32, 32), dtype=bool)
+    mask[:8, :8] = False
+    masked = metrics.compare(image, var, ref, var, mask=mask)
+    assert masked.passed, masked
+    assert masked.pixel.n_units == 32 * 32 - 64 and masked.blocks.n_units == 15
+    # A mask that cuts into a block removes that whole block from the block test.
+    mask[8, 8] = False
+    assert metrics.welch_test(image, var, ref, var, block=8, mask=mask).n_units == 14
+    with pytest.raises(ValueError, match="mask"):
+        metrics.compare(image, var, ref, var, mask=np.ones((4, 4), dtype=bool))
+    with pytest.raises(ValueError, match="no pixel"):
+        metrics.welch_test(image, var, ref, var, mask=np.zeros((32, 32), dtype=bool))

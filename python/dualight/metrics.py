@@ -163,6 +163,7 @@ def welch_test(
     alpha: float = 0.01,
     block: int = 1,
     var_floor: float = 1e-12,
+    mask: ArrayLike | None = None,
 ) -> WelchResult:
     """Test per pixel (or per block) whether two Monte Carlo estimates share their expectation.
 
@@ -191,6 +192,10 @@ def welch_test(
         variances were measured from independent runs instead.
     var_floor : float, optional
         Added to the summed variance so that noise-free pixels do not divide by zero.
+    mask : array_like of bool, optional
+        ``H x W``: the pixels to test (e.g. those an estimator can render at all). A block is
+        tested only if all its pixels are; untested units count as passed in ``passed``, have
+        ``z = 0``, and are left out of ``n_units``, ``pass_fraction`` and the Šidák correction.
 
     Returns
     -------
@@ -232,12 +237,16 @@ def welch_test(
         a, b, va, vb = (cropped[k] for k in ("mean_a", "mean_b", "var_a", "var_b"))
 
     z = np.abs(a - b) / np.sqrt(va + vb + var_floor)
-    n_units = hb * wb
+    tested = _tested_units(mask, (h, w), block)
+    z = np.where(tested[:, :, None], z, 0.0)
+    n_units = int(np.count_nonzero(tested))
+    if n_units == 0:
+        raise ValueError("mask leaves no pixel or block to test")
     # -expm1(log1p(-alpha) / n) == 1 - (1 - alpha) ** (1 / n), without cancellation.
     alpha_per_test = float(-np.expm1(np.log1p(-alpha) / (n_units * c)))
     passed = np.all(z < _z_critical(alpha_per_test), axis=2)
     return WelchResult(
-        pass_fraction=float(np.count_nonzero(passed)) / n_units,
+        pass_fraction=float(np.count_nonzero(passed & tested)) / n_units,
         alpha=float(alpha),
         alpha_per_test=alpha_per_test,
         n_units=n_units,
@@ -248,8 +257,27 @@ def welch_test(
     )
 
 
+def _pixel_mask(mask: ArrayLike | None, shape: tuple[int, int]) -> np.ndarray:
+    if mask is None:
+        return np.ones(shape, dtype=bool)
+    m = np.asarray(mask)
+    if m.shape != shape or m.dtype != bool:
+        raise ValueError(f"mask must be a boolean array of shape {shape}, got {m.dtype} {m.shape}")
+    return m
+
+
+def _tested_units(mask: ArrayLike | None, shape: tuple[int, int], block: int) -> np.ndarray:
+    m = _pixel_mask(mask, shape)
+    hb, wb = shape[0] // block, shape[1] // block
+    return m[: hb * block, : wb * block].reshape(hb, block, wb, block).all(axis=(1, 3))
+
+
 def delta_e2000(
-    image: ArrayLike, reference: ArrayLike, *, exposure: float | None = None
+    image: ArrayLike,
+    reference: ArrayLike,
+    *,
+    exposure: float | None = None,
+    mask: ArrayLike | None = None,
 ) -> dict[str, float]:
     """CIEDE2000 colour difference between two linear sRGB images.
 
@@ -270,6 +298,9 @@ def delta_e2000(
         ``H x W x 3`` linear sRGB (Rec.709 primaries) images.
     exposure : float, optional
         Explicit scale factor ``k``; required if the reference is black.
+    mask : array_like of bool, optional
+        ``H x W``: the pixels whose differences are summarised (all by default). The exposure
+        still comes from the whole reference.
 
     Returns
     -------
@@ -277,6 +308,7 @@ def delta_e2000(
         ``{"mean": ..., "p95": ..., "max": ...}`` of the per-pixel Delta E 2000.
     """
     x, y = _pair(image, reference)
+    keep = _pixel_mask(mask, x.shape[:2])
     if exposure is None:
         p99 = float(np.percentile(y @ _REC709_Y, 99))
         if not p99 > 0.0:
@@ -302,6 +334,7 @@ def delta_e2000(
             for rgb in (x, y)
         ]
         de = np.asarray(colour.delta_E(lab[0], lab[1], method="CIE 2000"), dtype=np.float64)
+    de = de[keep]
     return {
         "mean": float(de.mean()),
         "p95": float(np.percentile(de, 95)),
@@ -348,6 +381,7 @@ def compare(
     pixel_pass: float = 0.9975,
     block_pass: float = 0.9975,
     max_delta_e: float = 1.0,
+    mask: ArrayLike | None = None,
 ) -> Comparison:
     """Compare a rendering against a reference, both with per-pixel variances of the mean.
 
@@ -374,14 +408,22 @@ def compare(
         Minimum pass fractions of the per-pixel and per-block tests.
     max_delta_e : float, optional
         Exclusive upper bound on the mean CIEDE2000 difference (default exposure).
+    mask : array_like of bool, optional
+        ``H x W``: compare only these pixels (Welch tests, Delta E and relMSE alike), e.g. the
+        pixels a light tracer can render (not those that see a mirror or glass directly).
 
     Returns
     -------
     Comparison
     """
-    pixel = welch_test(image, variance, reference, reference_variance, alpha=alpha, block=1)
-    blocks = welch_test(image, variance, reference, reference_variance, alpha=alpha, block=block)
-    de = delta_e2000(image, reference)
+    pixel = welch_test(
+        image, variance, reference, reference_variance, alpha=alpha, block=1, mask=mask
+    )
+    blocks = welch_test(
+        image, variance, reference, reference_variance, alpha=alpha, block=block, mask=mask
+    )
+    de = delta_e2000(image, reference, mask=mask)
+    keep = _pixel_mask(mask, np.shape(reference)[:2])
     passed = (
         pixel.pass_fraction >= pixel_pass
         and blocks.pass_fraction >= block_pass
@@ -391,6 +433,6 @@ def compare(
         pixel=pixel,
         blocks=blocks,
         delta_e=de,
-        relmse=relmse(image, reference),
+        relmse=relmse(np.asarray(image)[keep][None], np.asarray(reference)[keep][None]),
         passed=bool(passed),
     )
