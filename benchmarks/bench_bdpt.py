@@ -1,0 +1,214 @@
+"""Equal-time error of the path tracer, the light tracer and BDPT (and Mitsuba 3's `path`)
+on the Cornell box, its caustic variant and Veach's door scene.
+
+Each estimator renders every scene for a series of time budgets (dualight: ``time_limit``;
+Mitsuba: a series of spp, timed). Error is relMSE (pbrt-v4's definition) against the stored
+Mitsuba references of the tests (``tests/references/<scene>_64``, 64x64, ``max_depth`` 8). Those
+references are noisy themselves: the expected relMSE against a noisy reference is the true
+relMSE plus the reference's own term ``mean(var_ref / (ref + eps)^2)``, which is estimated from
+the reference's variance image and subtracted (``relmse`` is corrected, ``relmse_raw`` is not).
+Monte Carlo error falls as 1/time, so ``1 / (relMSE * seconds)`` is an estimator's efficiency;
+the ratio of two efficiencies is the ratio of their times to equal error. Ratios use the longest
+budget. The light tracer cannot render pixels that see a mirror or glass directly, so its error
+is also reported on the pixels it can render (``relmse_lt_pixels``, for every estimator).
+
+Writes ``benchmarks/results/bench_bdpt.json`` and ``bench_bdpt.png`` (relMSE against seconds,
+one panel per scene).
+
+    python benchmarks/bench_bdpt.py            # budgets 0.5..8 s per render
+    python benchmarks/bench_bdpt.py --quick    # budgets 0.25..1 s, for a smoke run
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import dualight
+from dualight import metrics, scenes
+from dualight import mitsuba as dmi
+
+HERE = Path(__file__).resolve().parent
+RESULTS = HERE / "results"
+REFERENCES = HERE.parent / "tests" / "references"
+sys.path.insert(0, str(HERE.parent / "tests"))
+from test_pathspace_vs_mitsuba import renderable_by_light_tracing  # noqa: E402
+
+SCENES: dict[str, tuple[str, Callable[[], dualight.Scene]]] = {
+    "cornell": ("cornell_64", lambda: scenes.cornell_box(resolution=(64, 64))),
+    "caustics": (
+        "caustics_64",
+        lambda: scenes.cornell_box(resolution=(64, 64), variant="caustics"),
+    ),
+    "door": ("door_64", lambda: scenes.door_ajar(resolution=(64, 64))),
+}
+METHODS = ("path", "light", "bdpt")
+# (faster?, than) pairs whose equal-time efficiency ratio is reported.
+RATIOS = [
+    ("dualight_bdpt", "dualight_path"),
+    ("dualight_bdpt", "dualight_light"),
+    ("dualight_bdpt", "mitsuba_path"),
+    ("dualight_path", "mitsuba_path"),
+    ("dualight_light", "dualight_path"),
+]
+EPS = 1e-2  # relMSE's offset, as metrics.relmse
+
+
+def load_reference(name: str) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    mean = dualight.Image.load(REFERENCES / f"{name}_mean.exr")
+    var = dualight.Image.load(REFERENCES / f"{name}_var.exr")
+    return np.asarray(mean), np.asarray(var), mean.stats
+
+
+def errors(image: np.ndarray, ref: np.ndarray, ref_var: np.ndarray, mask: np.ndarray) -> dict:
+    raw = metrics.relmse(image, ref, EPS)
+    floor = float(np.mean(ref_var / (ref + EPS) ** 2))
+    masked = metrics.relmse(image[mask][None], ref[mask][None], EPS)
+    masked_floor = float(np.mean(ref_var[mask] / (ref[mask] + EPS) ** 2))
+    return {
+        "relmse_raw": raw,
+        "reference_floor": floor,
+        "relmse": max(raw - floor, 1e-12),
+        "relmse_lt_pixels": max(masked - masked_floor, 1e-12),
+    }
+
+
+def run_dualight(scene: dualight.Scene, method: str, budget: float, max_depth: int, seed: int):
+    start = time.perf_counter()
+    image = dualight.render(
+        scene, method, spp=None, time_limit=budget, max_depth=max_depth, seed=seed, progress=False
+    )
+    return np.asarray(image), time.perf_counter() - start, image.stats
+
+
+def run_mitsuba(scene: dualight.Scene, spp: int, max_depth: int, seed: int):
+    import mitsuba as mi
+
+    dmi.variant()
+    mscene = mi.load_dict(scene.to_mitsuba(spp=spp, max_depth=max_depth, rr_depth=5))
+    np.asarray(mi.render(mscene, spp=spp, seed=seed + 1000))  # warm-up: JIT compile
+    start = time.perf_counter()
+    image = np.asarray(mi.render(mscene, spp=spp, seed=seed), dtype=np.float32)
+    return image, time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--budgets", type=str, default="0.5,1,2,4,8")
+    parser.add_argument("--mitsuba-spp", type=str, default="16,64,256,1024,4096")
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    if args.quick:
+        args.budgets, args.mitsuba_spp = "0.25,0.5,1", "16,64,256"
+    budgets = [float(b) for b in args.budgets.split(",")]
+    mitsuba_spps = [int(s) for s in args.mitsuba_spp.split(",")]
+    suffix = "_quick" if args.quick else ""
+
+    summary: dict[str, Any] = {
+        "machine": {"cpu_count": os.cpu_count(), "platform": platform.platform()},
+        "budgets_seconds": budgets,
+        "scenes": {},
+    }
+    for name, (ref_name, build) in SCENES.items():
+        if not (REFERENCES / f"{ref_name}_mean.exr").exists():
+            print(f"skipping {name}: no reference {ref_name} (tests/references/make_references.py)")
+            continue
+        scene = build()
+        ref, ref_var, info = load_reference(ref_name)
+        max_depth = int(info["max_depth"])
+        mask = renderable_by_light_tracing(scene)
+        dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
+        runs: list[dict[str, Any]] = []
+        for method in METHODS:
+            for i, budget in enumerate(budgets):
+                img, secs, stats = run_dualight(scene, method, budget, max_depth, seed=100 + i)
+                runs.append(
+                    {
+                        "renderer": f"dualight_{method}",
+                        "budget": budget,
+                        "seconds": secs,
+                        "spp": stats["spp"],
+                        **errors(img, ref, ref_var, mask),
+                    }
+                )
+        try:
+            for spp in mitsuba_spps:
+                img, secs = run_mitsuba(scene, spp, max_depth, seed=spp)
+                runs.append(
+                    {
+                        "renderer": "mitsuba_path",
+                        "variant": dmi.variant(),
+                        "spp": spp,
+                        "seconds": secs,
+                        **errors(img, ref, ref_var, mask),
+                    }
+                )
+        except (ImportError, RuntimeError) as err:
+            print(f"skipping Mitsuba: {err}")
+        for r in runs:
+            r["efficiency"] = 1.0 / (r["relmse"] * r["seconds"])
+            print(
+                f"{name:>9} {r['renderer']:>15} {r['seconds']:7.2f} s {r['spp']:7d} spp "
+                f"relMSE {r['relmse']:.3e} (raw {r['relmse_raw']:.3e}, "
+                f"floor {r['reference_floor']:.1e}) LT pixels {r['relmse_lt_pixels']:.3e}"
+            )
+
+        top: dict[str, dict[str, Any]] = {}
+        for r in runs:  # each renderer's longest run
+            if r["seconds"] > top.get(r["renderer"], {"seconds": -1.0})["seconds"]:
+                top[r["renderer"]] = r
+        ratios = {
+            f"{a} / {b}": top[a]["efficiency"] / top[b]["efficiency"]
+            for a, b in RATIOS
+            if a in top and b in top
+        }
+        summary["scenes"][name] = {
+            "reference": ref_name,
+            "reference_spp": info.get("spp"),
+            "max_depth": max_depth,
+            "lt_renderable_fraction": float(mask.mean()),
+            "runs": runs,
+            "equal_time_efficiency_ratios": ratios,
+        }
+        print(f"{name}: efficiency ratios (time to equal relMSE, > 1: the first is faster)")
+        for k, v in ratios.items():
+            print(f"   {k:>34}: x{v:.2f}")
+
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    (RESULTS / f"bench_bdpt{suffix}.json").write_text(json.dumps(summary, indent=2) + "\n")
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = list(summary["scenes"])
+    fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 4.2), squeeze=False)
+    for ax, name in zip(axes[0], names, strict=True):
+        runs = summary["scenes"][name]["runs"]
+        for renderer in sorted({r["renderer"] for r in runs}):
+            rs = sorted((r for r in runs if r["renderer"] == renderer), key=lambda r: r["seconds"])
+            ax.loglog(
+                [r["seconds"] for r in rs], [r["relmse"] for r in rs], "o-", label=renderer
+            )
+        ax.set_title(f"{name} 64x64, max_depth {summary['scenes'][name]['max_depth']}")
+        ax.set_xlabel("render time (s)")
+        ax.set_ylabel("relMSE (reference noise removed)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(RESULTS / f"bench_bdpt{suffix}.png", dpi=110)
+    print(f"wrote {RESULTS / f'bench_bdpt{suffix}.json'} and bench_bdpt{suffix}.png")
+
+
+if __name__ == "__main__":
+    main()
