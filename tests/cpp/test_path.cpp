@@ -5,6 +5,7 @@
 #include "check.h"
 #include "core/sampler.h"
 #include "pathspace/path.h"
+#include "pathspace/mis_weight.h"
 #include "pathspace/subpath.h"
 
 using namespace dualight;
@@ -96,4 +97,92 @@ TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
     CHECK(verify(kCamera, path, !from_camera).off == 0);
   }
   CHECK(checked > 50);
+}
+
+namespace {
+
+// The closed box with a mirror quad standing in it, so that paths have delta vertices.
+Scene box_with_mirror() {
+  std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                             3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+  std::vector<uint32_t> m(t.size() / 3, 0);
+  const auto add = [&](std::initializer_list<float> xyz, uint32_t material) {
+    const uint32_t base = static_cast<uint32_t>(p.size() / 3);
+    for (const float v : xyz) p.push_back(v);
+    for (const uint32_t i : {base, base + 1, base + 2, base, base + 2, base + 3}) t.push_back(i);
+    m.push_back(material);
+    m.push_back(material);
+  };
+  add({0.3f, 0.95f, 0.3f, 0.7f, 0.95f, 0.3f, 0.7f, 0.95f, 0.7f, 0.3f, 0.95f, 0.7f}, 1);  // emitter, facing -y
+  add({0.2f, 0.1f, 0.8f, 0.8f, 0.1f, 0.8f, 0.8f, 0.7f, 0.6f, 0.2f, 0.7f, 0.6f}, 2);  // tilted mirror
+  return Scene(std::move(p), std::move(t), std::move(m),
+               {Material{Lambertian{Color(0.6f)}, Color(0.f)}, Material{Lambertian{Color(0.3f)}, Color(4.f)},
+                Material{Mirror{Color(0.9f)}, Color(0.f)}});
+}
+
+}  // namespace
+
+TEST_CASE(mis_weights_of_all_strategies_sum_to_one) {
+  // For a complete path x_0 (camera) .. x_k (on an emitter), build the subpaths every strategy
+  // (s, t = k + 1 - s) would have drawn, with densities recomputed from positions in both
+  // directions, and check that the weights of the strategies that can make the path sum to 1.
+  const Scene scene = box_with_mirror();
+  const WalkLimits limits{7, 1 << 30};
+  uint64_t rays = 0;
+  Path path;
+  size_t checked = 0, with_delta = 0;
+  for (uint32_t i = 0; i < 3000 && checked < 300; ++i) {
+    IndependentSampler sampler(5, 1, i);
+    const Point2 u = sampler.next_2d();
+    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+    for (size_t k = 2; k < path.size(); ++k) {
+      if (!path[k].is_emitter() || dot(path[k].n, path[k - 1].p - path[k].p) <= 0.f) continue;
+      const size_t n = k + 1;
+      // Densities of each vertex from the camera side and from the emitter side.
+      std::vector<float> p_cam(n, 0.f), p_light(n, 0.f);
+      for (size_t j = 1; j < n; ++j) {
+        if (!path[j - 1].delta) p_cam[j] = pdf_area(kCamera, path[j - 1], j >= 2 ? &path[j - 2] : nullptr, path[j]);
+      }
+      Vertex origin = path[k];
+      origin.type = VertexType::Light;
+      p_light[k] = pdf_light_origin(scene, origin);
+      p_light[k - 1] = pdf_light(origin, path[k - 1]);
+      for (size_t j = 0; j + 2 < n; ++j) {
+        if (!path[j + 1].delta) p_light[j] = pdf_area(kCamera, path[j + 1], &path[j + 2], path[j]);
+      }
+      float sum = 0.f;
+      bool any_delta = false;
+      for (size_t t = 1; t <= n; ++t) {
+        const size_t s = n - t;
+        if (s == 1 && t == 1) continue;
+        Path cam(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(t)), light;
+        for (size_t j = 0; j < t; ++j) {
+          cam[j].pdf_fwd = p_cam[j];
+          cam[j].pdf_rev = p_light[j];
+        }
+        for (size_t j = 0; j < s; ++j) {
+          Vertex v = path[k - j];
+          v.pdf_fwd = p_light[k - j];
+          v.pdf_rev = p_cam[k - j];
+          if (j == 0) v.type = VertexType::Light;
+          light.push_back(v);
+        }
+        // Strategies that would connect at a delta vertex cannot make the path.
+        if ((t >= 2 && path[t - 1].delta) || (s >= 1 && path[k + 1 - s].delta)) {
+          any_delta = true;
+          continue;
+        }
+        const Vertex sampled = s == 1 ? light[0] : Vertex{};
+        Vertex cam_vertex = path[0];
+        sum += mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
+                          static_cast<int>(t), (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
+      }
+      CHECK_NEAR(sum, 1.f, 2e-4f);
+      ++checked;
+      with_delta += any_delta;
+    }
+  }
+  CHECK(checked >= 100);
+  CHECK(with_delta >= 10);
 }
