@@ -197,9 +197,7 @@ def main() -> None:
         runs = summary["scenes"][name]["runs"]
         for renderer in sorted({r["renderer"] for r in runs}):
             rs = sorted((r for r in runs if r["renderer"] == renderer), key=lambda r: r["seconds"])
-            ax.loglog(
-                [r["seconds"] for r in rs], [r["relmse"] for r in rs], "o-", label=renderer
-            )
+            ax.loglog([r["seconds"] for r in rs], [r["relmse"] for r in rs], "o-", label=renderer)
         ax.set_title(f"{name} 64x64, max_depth {summary['scenes'][name]['max_depth']}")
         ax.set_xlabel("render time (s)")
         ax.set_ylabel("relMSE (reference noise removed)")

@@ -163,10 +163,13 @@ def render(
     elif method == "light":
         run, options = _core.render_light, _core.LightTracerOptions(**common)
     else:
-        run, options = _core.render_bdpt, _core.BdptOptions(
-            **common,
-            heuristic=getattr(_core.MisHeuristic, heuristic),
-            strategy_images=strategy_images,
+        run, options = (
+            _core.render_bdpt,
+            _core.BdptOptions(
+                **common,
+                heuristic=getattr(_core.MisHeuristic, heuristic),
+                strategy_images=strategy_images,
+            ),
         )
     bar = None
     callback: ProgressCallback | None
