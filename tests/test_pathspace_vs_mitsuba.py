@@ -47,10 +47,6 @@ def _reference(name: str) -> tuple[np.ndarray, np.ndarray, dict]:
     return np.asarray(mean), np.asarray(var), mean.stats
 
 
-def _is_specular(mesh: dualight.Mesh) -> bool:
-    return type(getattr(mesh, "material", None)).__name__ in ("Mirror", "Dielectric")
-
-
 def renderable_by_light_tracing(scene: dualight.Scene, subsamples: int = 4) -> np.ndarray:
     """Pixels whose every camera ray (on a subsamples^2 grid) first hits a non-specular
     surface, or nothing: the only pixels a light tracer can render completely."""
@@ -69,7 +65,7 @@ def renderable_by_light_tracing(scene: dualight.Scene, subsamples: int = 4) -> n
                     pixel.append(y * cam.width + x)
     _, prim = scene._compile().intersect(np.array(origins), np.array(directions))
     _, _, mesh_of = scene.triangle_arrays()
-    specular = np.array([_is_specular(m) for m in scene.meshes])
+    specular = np.array([not isinstance(m.material, dualight.Diffuse) for m in scene.meshes])
     hits_specular = np.zeros(len(prim), dtype=bool)
     hit = prim >= 0
     hits_specular[hit] = specular[mesh_of[prim[hit]]]
