@@ -157,6 +157,20 @@ def test_stats_count_light_paths(method: str) -> None:
     s = image.stats
     assert s["method"] == method and s["light_paths"] == 16 * 16 * 4
     assert s["rays"] > 0 and s["invalid_samples"] == 0 and not s["interrupted"]
+    assert not s["specular_surfaces"]
+
+
+@pytest.mark.parametrize("method", ["path", *ADJOINT])
+def test_stats_count_connections_skipped_at_specular_vertices(method: str) -> None:
+    """A mirror in view: connections that end on it cannot carry light and are not traced."""
+    plain = scenes.cornell_box(resolution=(16, 16))
+    with_mirror = scenes.cornell_box(resolution=(16, 16))
+    corners = np.array([[500.0, 10, 400], [350, 10, 540], [350, 400, 540], [500, 400, 400]])
+    with_mirror.add_mesh(corners, [[0, 1, 2, 3]], material=dualight.Mirror(), name="mirror")
+    a = dualight.render(plain, method, spp=16, max_depth=6, seed=1, progress=False).stats
+    b = dualight.render(with_mirror, method, spp=16, max_depth=6, seed=1, progress=False).stats
+    assert b["specular_surfaces"] and not a["specular_surfaces"]
+    assert b["skipped_connections"] > 1.2 * a["skipped_connections"], (a, b)
 
 
 @pytest.mark.parametrize("method", ADJOINT)

@@ -190,6 +190,8 @@ def render(
 
     stats = dict(result["stats"])
     stats.update(method=method, sampler=sampler, seed=seed, max_depth=max_depth, rr_depth=rr_depth)
+    # What the scene asks for: without mirrors or glass no connection is skipped as specular.
+    stats["specular_surfaces"] = scene.has_specular
     if method != "path":
         stats["light_paths"] = result["light_paths"]
     if method == "bdpt":

@@ -19,6 +19,7 @@ py::dict stats_dict(const RenderStats& s) {
   py::dict d;
   d["samples"] = s.samples;
   d["rays"] = s.rays;
+  d["skipped_connections"] = s.skipped_connections;
   d["invalid_samples"] = s.invalid_samples;
   d["spp"] = s.spp;
   d["seconds"] = s.seconds;
@@ -166,7 +167,8 @@ void bind_pathspace(py::module_& m) {
       [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, uint32_t count, int max_depth,
          uint64_t seed) {
         PathCheck worst;
-        uint64_t rays = 0, vertices = 0, off = 0;
+        TraceCounters rays;
+        uint64_t vertices = 0, off = 0;
         Path path;
         const WalkLimits limits{max_depth, 1 << 30};  // no Russian roulette: beta is recomputable
         for (uint32_t i = 0; i < count; ++i) {

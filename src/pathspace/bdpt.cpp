@@ -24,10 +24,10 @@ struct Subpaths {
 
 template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
-                  Sampler& sampler, Subpaths& paths, uint64_t& rays, SplatList& splats, Film& film) {
+                  Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film& film) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
-  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, rays);
-  light_subpath(scene, sampler, limits, paths.light, rays);
+  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
+  light_subpath(scene, sampler, limits, paths.light, counters);
   const Path& cam = paths.camera;
   const Path& light = paths.light;
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
@@ -40,7 +40,7 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
       if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
       Vertex sampled;
       Point2 raster{};
-      Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, rays);
+      Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
       if (is_black(c)) continue;
       c *= mis_weight(scene, camera, light, cam, sampled, s, t, opt.heuristic);
       if (t == 1) {
@@ -75,8 +75,8 @@ RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const 
   if (options.strategy_images) result.film.add_layers(bdpt_strategies(options.max_depth).size());
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true};
   tbb::enumerable_thread_specific<Subpaths> workspaces;
-  const auto estimate = [&](float x, float y, auto& sampler, uint64_t& rays, SplatList& splats) {
-    return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), rays, splats, result.film);
+  const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList& splats) {
+    return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, result.film);
   };
   switch (options.sampler) {
     case SamplerType::Independent:

@@ -10,6 +10,7 @@
 // importance We and G has no camera cosine (pinhole).
 #pragma once
 #include "pathspace/path.h"
+#include "pathspace/render_stats.h"
 
 namespace dualight {
 
@@ -25,32 +26,41 @@ inline Vertex camera_vertex(const PinholeCamera& camera) {
 
 // t = 1: the light subpath vertex qs seen by the camera.
 inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, const Vertex& qs, Point2& raster,
-                               uint64_t& rays) {
-  if (!qs.connectible() || !camera.raster_position(qs.p, raster)) return Color(0.f);
+                               TraceCounters& counters) {
+  if (!qs.connectible() || !camera.raster_position(qs.p, raster)) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
   const Vec3 d = camera.origin() - qs.p;
   const float dist2 = dot(d, d);
   const Vec3 w = d / std::sqrt(dist2);
   const Color f = qs.type == VertexType::Light ? emitted_towards(qs, camera.origin())
                                                : scattering(qs, camera.origin(), TransportMode::Importance);
   const Color L = qs.beta * f * (camera.pdf_w(-w) * std::abs(dot(qs.n, w)) / dist2);
-  if (is_black(L)) return L;
-  ++rays;
+  if (is_black(L)) {
+    ++counters.skipped_connections;
+    return L;
+  }
+  ++counters.rays;
   return scene.visible_point(qs.p, qs.n, camera.origin()) ? L : Color(0.f);
 }
 
 template <class Sampler>
 Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam, int s, int t,
-              Sampler& sampler, Vertex& sampled, Point2& raster, uint64_t& rays) {
+              Sampler& sampler, Vertex& sampled, Point2& raster, TraceCounters& counters) {
   if (s == 0) {
     const Vertex& pt = cam[t - 1];
     return pt.is_emitter() ? pt.beta * emitted_towards(pt, cam[t - 2].p) : Color(0.f);
   }
   if (t == 1) {
     sampled = camera_vertex(camera);
-    return connect_to_camera(scene, camera, light[s - 1], raster, rays);
+    return connect_to_camera(scene, camera, light[s - 1], raster, counters);
   }
   const Vertex& pt = cam[t - 1];
-  if (!pt.connectible()) return Color(0.f);
+  if (!pt.connectible()) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
   if (s == 1) {
     const float u_select = sampler.next_1d();
     const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
@@ -64,7 +74,10 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
     sampled.pdf_fwd = es.pdf_a;
   }
   const Vertex& qs = s == 1 ? sampled : light[s - 1];
-  if (!qs.connectible()) return Color(0.f);
+  if (!qs.connectible()) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
   const Vec3 d = qs.p - pt.p;
   const float dist2 = dot(d, d);
   if (!(dist2 > 0.f)) return Color(0.f);
@@ -72,8 +85,11 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   const float G = std::abs(dot(pt.n, w)) * std::abs(dot(qs.n, w)) / dist2;
   const Color fq = s == 1 ? emitted_towards(qs, pt.p) : scattering(qs, pt.p, TransportMode::Importance);
   const Color L = qs.beta * fq * pt.beta * scattering(pt, qs.p, TransportMode::Radiance) * G;
-  if (is_black(L)) return L;
-  ++rays;
+  if (is_black(L)) {
+    ++counters.skipped_connections;
+    return L;
+  }
+  ++counters.rays;
   return scene.visible(pt.p, pt.n, qs.p, qs.prim) ? L : Color(0.f);
 }
 

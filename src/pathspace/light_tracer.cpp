@@ -23,13 +23,13 @@ constexpr uint64_t kParticleStream = 0x9a3f'6c21'0b7d'e584ull;
 
 template <class Sampler>
 void trace_particle(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt, uint64_t index,
-                    Path& path, SplatList& splats, uint64_t& rays) {
+                    Path& path, SplatList& splats, TraceCounters& counters) {
   Sampler sampler(opt.seed, kParticleStream ^ (index >> 32), static_cast<uint32_t>(index));
-  light_subpath(scene, sampler, WalkLimits{opt.max_depth, opt.rr_depth}, path, rays);
+  light_subpath(scene, sampler, WalkLimits{opt.max_depth, opt.rr_depth}, path, counters);
   splats.begin_path();
   for (const Vertex& v : path) {
     Point2 raster{};
-    const Color c = connect_to_camera(scene, camera, v, raster, rays);
+    const Color c = connect_to_camera(scene, camera, v, raster, counters);
     if (is_black(c)) continue;
     splats.add(static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u), c);
   }
@@ -48,7 +48,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   RenderStats stats;
-  std::atomic<uint64_t> rays{0};
+  std::atomic<uint64_t> rays{0}, skipped{0};
   uint64_t invalid = 0;
   uint64_t traced = 0;
   uint64_t pass_chunks = 4;
@@ -70,13 +70,14 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
       SplatList& splats = chunk_splats[chunk];
       splats.clear();
       Path path;
-      uint64_t local_rays = 0;
+      TraceCounters local;
       for (uint64_t i = first; i < last; ++i) {
         if ((i & 255u) == 0 && control.cancelled()) break;
-        trace_particle<Sampler>(scene, camera, opt, i, path, splats, local_rays);
+        trace_particle<Sampler>(scene, camera, opt, i, path, splats, local);
         ++chunk_particles[chunk];
       }
-      rays.fetch_add(local_rays, std::memory_order_relaxed);
+      rays.fetch_add(local.rays, std::memory_order_relaxed);
+      skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
       control.done.fetch_add(chunk_particles[chunk], std::memory_order_relaxed);
     });
     // A cancelled pass keeps only its complete prefix of chunks, so the particle count is exact.
@@ -93,6 +94,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   }
   stats.seconds = elapsed();
   stats.rays = rays.load();
+  stats.skipped_connections = skipped.load();
   stats.invalid_samples = invalid;
   stats.interrupted = control.cancelled();
   stats.samples = traced;

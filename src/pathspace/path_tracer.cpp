@@ -11,7 +11,7 @@ namespace {
 // One camera path; returns its radiance estimate.
 template <class Sampler>
 Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Sampler& sampler,
-                 uint64_t& rays) {
+                 TraceCounters& counters) {
   const bool has_emitters = scene.emitter_count() > 0;
   const auto depth_allows = [&](int segments) { return opt.max_depth < 0 || segments <= opt.max_depth; };
 
@@ -22,7 +22,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
   // `depth` is the number of segments up to and including `ray`, i.e. the index of the vertex it hits.
   for (int depth = 1; depth_allows(depth); ++depth) {
     SurfaceHit hit;
-    ++rays;
+    ++counters.rays;
     if (!scene.intersect(ray, hit)) break;
 
     const Vec3 wo_world = -ray.d;
@@ -46,7 +46,9 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     const Vec3 wo = frame.to_local(wo_world);
     const Bsdf& bsdf = hit.material->bsdf;
 
-    if (has_emitters && !is_delta(bsdf)) {
+    if (has_emitters && is_delta(bsdf)) {
+      ++counters.skipped_connections;  // no light sample can meet a specular lobe
+    } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
       const EmitterSample es = scene.sample_emitter(u_select, u_light);
@@ -57,8 +59,10 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
       if (cos_light > 0.f && dist2 > 0.f) {
         const Vec3 wi = frame.to_local(wi_world);
         const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
-        if (!is_black(f)) {
-          ++rays;
+        if (is_black(f)) {
+          ++counters.skipped_connections;
+        } else {
+          ++counters.rays;
           if (scene.visible(hit.p, ns, es.p, es.prim)) {
             const float pdf_light_w = es.pdf_a * dist2 / cos_light;
             const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
@@ -92,8 +96,8 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
                          RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit};
-  const auto estimate = [&](float x, float y, auto& sampler, uint64_t& rays, SplatList&) {
-    return trace_path(scene, camera.generate_ray(x, y), options, sampler, rays);
+  const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
+    return trace_path(scene, camera.generate_ray(x, y), options, sampler, counters);
   };
   switch (options.sampler) {
     case SamplerType::Independent:

@@ -24,8 +24,8 @@ struct PixelDriverOptions {
   bool light_paths = false;  // every sample also traces one light path that may splat
 };
 
-// estimate(x, y, sampler, rays, splats) returns the sample value for film position (x, y) in
-// pixels, adds the rays it traced to `rays` and its light path's splats to `splats`. The film
+// estimate(x, y, sampler, counters, splats) returns the sample value for film position (x, y)
+// in pixels, adds the rays it traced (and connections it skipped) to `counters` and its light path's splats to `splats`. The film
 // position uses the sampler's first 2D sample. Each tile collects its splats in a list of its own;
 // the lists are added to the film in tile order after every pass.
 template <class Sampler, class Estimate>
@@ -40,7 +40,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   const bool unbounded = opt.spp == 0;
   control.total.store(unbounded ? 0 : n_pixels * opt.spp);
 
-  std::atomic<uint64_t> rays{0}, invalid{0};
+  std::atomic<uint64_t> rays{0}, skipped{0}, invalid{0};
   std::vector<SplatList> tile_splats(opt.light_paths ? n_tiles : 0);
   std::vector<uint64_t> tile_samples(n_tiles, 0);
   SplatList no_splats;  // estimators without light paths never add to it
@@ -60,7 +60,8 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     const double pass_start = elapsed();
     parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
       const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
-      uint64_t local_rays = 0, local_invalid = 0;
+      TraceCounters local;
+      uint64_t local_invalid = 0;
       SplatList& splats = opt.light_paths ? tile_splats[tile] : no_splats;
       splats.clear();
       tile_samples[tile] = 0;
@@ -73,7 +74,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
             const Point2 jitter = sampler.next_2d();
             splats.begin_path();
             Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler,
-                                   local_rays, splats);
+                                   local, splats);
             splats.end_path();
             if (!is_finite(value)) {
               value = Color(0.f);
@@ -85,7 +86,8 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
           control.done.fetch_add(count, std::memory_order_relaxed);
         }
       }
-      rays.fetch_add(local_rays, std::memory_order_relaxed);
+      rays.fetch_add(local.rays, std::memory_order_relaxed);
+      skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
     if (opt.light_paths) {
@@ -104,6 +106,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
 
   stats.seconds = elapsed();
   stats.rays = rays.load();
+  stats.skipped_connections = skipped.load();
   stats.invalid_samples = invalid.load();
   stats.interrupted = control.cancelled();
   const std::vector<uint32_t> counts = film.sample_counts();

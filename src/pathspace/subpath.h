@@ -10,6 +10,7 @@
 
 #include "core/frame.h"
 #include "pathspace/path.h"
+#include "pathspace/render_stats.h"
 
 namespace dualight {
 
@@ -24,11 +25,11 @@ namespace subpath_detail {
 // pdf_w; at most `max_new` vertices are added.
 template <class Sampler>
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
-                 int rr_depth, TransportMode mode, Path& path, uint64_t& rays) {
+                 int rr_depth, TransportMode mode, Path& path, TraceCounters& counters) {
   Color throughput(1.f);  // beta without the start's emission, for Russian roulette
   for (size_t added = 0; added < max_new; ++added) {
     SurfaceHit hit;
-    ++rays;
+    ++counters.rays;
     if (!scene.intersect(ray, hit)) return;
     Vertex v;
     v.type = VertexType::Surface;
@@ -79,7 +80,8 @@ inline size_t max_vertices(int max_depth, int extra) {
 // The camera subpath through film position (x, y): the camera vertex, then surface vertices.
 template <class Sampler>
 void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, float y, Sampler& sampler,
-                    const WalkLimits& limits, Path& path, uint64_t& rays) {
+                    const WalkLimits& limits, Path& path,
+                   TraceCounters& counters) {
   path.clear();
   const Ray ray = camera.generate_ray(x, y);
   Vertex c;
@@ -90,13 +92,14 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
   path.push_back(c);
   const size_t max_new = subpath_detail::max_vertices(limits.max_depth, 1) - 1;
   subpath_detail::random_walk(scene, ray, sampler, Color(1.f), camera.pdf_w(ray.d), max_new, limits.rr_depth,
-                              TransportMode::Radiance, path, rays);
+                              TransportMode::Radiance, path, counters);
 }
 
 // A light subpath: a point on an emitter chosen by power, then a cosine-distributed direction
 // from its front side.
 template <class Sampler>
-void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limits, Path& path, uint64_t& rays) {
+void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limits, Path& path,
+                   TraceCounters& counters) {
   path.clear();
   const size_t max_vertices = subpath_detail::max_vertices(limits.max_depth, 0);
   if (max_vertices == 0) return;
@@ -118,7 +121,7 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   // beta = Le |cos| / (pdf_a pdf_dir) = Le pi / pdf_a
   const Color beta = es.Le * (kPi / es.pdf_a);
   subpath_detail::random_walk(scene, Ray{offset_ray_origin(es.p, es.n), d}, sampler, beta, pdf_dir,
-                              max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, rays);
+                              max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);
 }
 
 }  // namespace dualight

@@ -68,7 +68,7 @@ TEST_CASE(camera_importance_integrates_to_one_per_pixel) {
 TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
   const Scene scene = closed_box();
   const WalkLimits limits{8, 1 << 30};
-  uint64_t rays = 0;
+  TraceCounters rays;
   Path path;
   size_t checked = 0;
   for (uint32_t i = 0; i < 200; ++i) {
@@ -129,7 +129,7 @@ TEST_CASE(mis_weights_of_all_strategies_sum_to_one) {
   // directions, and check that the weights of the strategies that can make the path sum to 1.
   const Scene scene = box_with_mirror();
   const WalkLimits limits{7, 1 << 30};
-  uint64_t rays = 0;
+  TraceCounters rays;
   Path path;
   size_t checked = 0, with_delta = 0;
   for (uint32_t i = 0; i < 3000 && checked < 300; ++i) {
