@@ -6,14 +6,18 @@ A C++17 core (Embree, TBB) behind a small Python API::
     scene = dualight.scenes.cornell_box(resolution=(128, 128))
     image = dualight.render(scene, method="path", spp=256)
     image.save("cornell.exr")
+
+Meshes are diffuse by default; ``material=dualight.Mirror()`` or ``dualight.Dielectric(ior=1.5)``
+makes them specular (path tracing only: radiosity assumes diffuse surfaces).
 """
 
 from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import metrics, radiosity, scenes
+from dualight import materials, metrics, radiosity, scenes
 from dualight.image import Image
+from dualight.materials import Dielectric, Diffuse, Material, Mirror
 from dualight.render import METHODS, render
 from dualight.scene import Camera, Mesh, Scene
 
@@ -25,10 +29,15 @@ except PackageNotFoundError:  # running from a source tree
 __all__ = [
     "METHODS",
     "Camera",
+    "Dielectric",
+    "Diffuse",
     "Image",
+    "Material",
     "Mesh",
+    "Mirror",
     "Scene",
     "__version__",
+    "materials",
     "metrics",
     "radiosity",
     "render",

@@ -3,7 +3,7 @@
 * :func:`variant` picks and sets a Mitsuba variant that works on this machine.
 * :func:`scene_dict` turns a :class:`dualight.Scene` into a dict for ``mitsuba.load_dict``
   with the same conventions as dualight (pinhole camera with the full fov along x, box pixel
-  filter, face normals, two-sided Lambertian BRDFs, one-sided area emitters).
+  filter, face normals, each material's matching BSDF, one-sided area emitters).
 * :func:`reference` renders the mean image and the per-pixel variance *of the mean*.
 
 Mitsuba is imported inside the functions only, so ``dualight`` imports without it.
@@ -29,6 +29,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+from dualight.materials import Dielectric, Diffuse, Material, Mirror
 
 if TYPE_CHECKING:
     from dualight.scene import Scene
@@ -171,15 +173,30 @@ def _rgb(value: Sequence[float]) -> dict[str, Any]:
     return {"type": "rgb", "value": [float(c) for c in value]}
 
 
+def _bsdf(material: Material, name: str) -> dict[str, Any]:
+    """The Mitsuba BSDF dict matching a dualight material (see :func:`scene_dict`)."""
+    if isinstance(material, Diffuse):
+        diffuse = {"type": "diffuse", "reflectance": _rgb(material.reflectance)}
+        return {"type": "twosided", "bsdf": diffuse}
+    if isinstance(material, Mirror):
+        conductor = {
+            "type": "conductor",
+            "material": "none",
+            "specular_reflectance": _rgb(material.reflectance),
+        }
+        return {"type": "twosided", "bsdf": conductor}
+    if isinstance(material, Dielectric):
+        return {"type": "dielectric", "int_ior": float(material.ior), "ext_ior": 1.0}
+    raise TypeError(f"mesh {name!r}: unknown material {type(material).__name__}")
+
+
 def _mesh(mesh: Any, key: str) -> Any:
-    """A ``mitsuba.Mesh`` with face normals, a two-sided diffuse BSDF and maybe an emitter."""
+    """A ``mitsuba.Mesh`` with face normals, its material's BSDF and maybe an emitter."""
     import mitsuba as mi
 
     props = mi.Properties("mesh")
     props["face_normals"] = True
-    props["bsdf"] = mi.load_dict(
-        {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": _rgb(mesh.reflectance)}}
-    )
+    props["bsdf"] = mi.load_dict(_bsdf(mesh.material, mesh.name))
     if mesh.is_emitter:
         props["emitter"] = mi.load_dict({"type": "area", "radiance": _rgb(mesh.emission)})
     out = mi.Mesh(key, len(mesh.vertices), len(mesh.triangles), props)
@@ -219,9 +236,16 @@ def scene_dict(
     * Integrator: ``integrator`` with ``max_depth``, ``rr_depth`` and ``hide_emitters=False``;
       a dict is used as it is. ``max_depth`` counts segments as in dualight (1: emitters seen
       directly, 2: direct lighting, -1: unbounded).
-    * Every mesh becomes a ``mitsuba.Mesh`` object (no file) with face normals, a ``twosided``
-      ``diffuse`` BSDF and, if it emits, a one-sided ``area`` emitter with RGB radiance. The
-      keys are ``"mesh_<name>"``.
+    * Every mesh becomes a ``mitsuba.Mesh`` object (no file) with face normals, its material's
+      BSDF and, if it emits, a one-sided ``area`` emitter with RGB radiance. The keys are
+      ``"mesh_<name>"``. Materials map to:
+
+      - :class:`~dualight.Diffuse`: ``twosided`` around ``diffuse`` with an RGB
+        ``reflectance``;
+      - :class:`~dualight.Mirror`: ``twosided`` around ``conductor`` with ``material="none"``
+        (a perfect reflector) and an RGB ``specular_reflectance``;
+      - :class:`~dualight.Dielectric`: ``dielectric`` with ``int_ior=ior`` and
+        ``ext_ior=1.0`` (not ``twosided``: the face normals point to the exterior).
 
     The meshes are objects of the Mitsuba variant set when this is called (one is chosen with
     :func:`variant` if none is set): load the dict in that variant.

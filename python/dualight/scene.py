@@ -1,4 +1,4 @@
-"""The scene you edit: a camera and triangle meshes with diffuse reflectance and emission.
+"""The scene you edit: a camera and triangle meshes, each with a material and maybe an emission.
 
 `Scene` is a plain Python description, validated as it is built. Rendering turns it into the
 immutable compiled scene (`dualight._core.Scene`), which commits Embree once and is cached until
@@ -8,7 +8,10 @@ Conventions (the same as Mitsuba 3):
 
 * A triangle's normal follows the right-hand rule on its vertex order,
   ``n = (v1 - v0) x (v2 - v0)``. Emitters are one-sided: they emit on the normal's side only.
-* Reflectance is a two-sided Lambertian BRDF (Mitsuba: ``twosided`` around ``diffuse``).
+* A mesh's material is one of :mod:`dualight.materials`: :class:`~dualight.Diffuse` (the
+  default: a two-sided Lambertian BRDF, Mitsuba's ``twosided`` around ``diffuse``),
+  :class:`~dualight.Mirror` or :class:`~dualight.Dielectric`, whose exterior is on the normal's
+  side.
 * The camera's ``fov`` is the full angle along x in degrees; row 0 of an image is its top.
 """
 
@@ -22,10 +25,14 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
+from dualight.materials import Dielectric, Diffuse, Material, Mirror, _reflectance_of
+
 if TYPE_CHECKING:
     from dualight import _core
 
 Vec3 = tuple[float, float, float]
+
+_DEFAULT_REFLECTANCE: Vec3 = (0.5, 0.5, 0.5)
 
 
 def _vec3(value: Any, name: str) -> Vec3:
@@ -104,7 +111,24 @@ class Camera:
 
 @dataclass(frozen=True)
 class Mesh:
-    """A triangle mesh with one diffuse material. Arrays are read-only copies."""
+    """A triangle mesh with one material and an emission (maybe zero). Arrays are read-only
+    copies.
+
+    Attributes
+    ----------
+    vertices, triangles : numpy.ndarray
+        ``(V, 3)`` float64 positions and ``(T, 3)`` int64 vertex indices.
+    reflectance : tuple of 3 float
+        The material's reflectance: the albedo of a :class:`~dualight.Diffuse`, the reflectance
+        of a :class:`~dualight.Mirror`, ``(1, 1, 1)`` for a :class:`~dualight.Dielectric`.
+    emission : tuple of 3 float
+        Radiance leaving the front side.
+    name : str
+    areas : numpy.ndarray
+        ``(T,)`` float64 triangle areas.
+    material : Diffuse, Mirror or Dielectric
+        ``Diffuse(reflectance)`` when not given.
+    """
 
     vertices: np.ndarray  # (V, 3) float64
     triangles: np.ndarray  # (T, 3) int64
@@ -112,6 +136,20 @@ class Mesh:
     emission: Vec3
     name: str
     areas: np.ndarray = field(repr=False)  # (T,) float64
+    material: Material = None  # type: ignore[assignment]  # None: Diffuse(reflectance)
+
+    def __post_init__(self) -> None:
+        if self.material is None:
+            object.__setattr__(self, "material", Diffuse(self.reflectance))
+        elif not isinstance(self.material, Diffuse | Mirror | Dielectric):
+            raise TypeError(
+                f"{self.name}: material must be a dualight Diffuse, Mirror or Dielectric, "
+                f"got {type(self.material).__name__}"
+            )
+        elif tuple(self.reflectance) != _reflectance_of(self.material):
+            raise ValueError(
+                f"{self.name}: reflectance {self.reflectance} disagrees with {self.material!r}"
+            )
 
     @property
     def is_emitter(self) -> bool:
@@ -149,13 +187,14 @@ def _colour(value: Any, name: str, *, upper: float | None) -> Vec3:
 
 
 class Scene:
-    """A camera and diffuse triangle meshes, some of them emitters.
+    """A camera and triangle meshes with materials, some of them emitters.
 
     Examples
     --------
     >>> scene = dualight.Scene(camera=dualight.Camera(origin=(0, 1, -3), target=(0, 1, 0)))
     >>> scene.add_mesh(vertices, faces, reflectance=(0.7, 0.7, 0.7))
     >>> scene.add_mesh(light_v, light_f, reflectance=(0, 0, 0), emission=(10, 10, 10))
+    >>> scene.add_mesh(ball_v, ball_f, material=dualight.Dielectric(ior=1.5), name="glass")
     >>> image = dualight.render(scene, spp=64)
     """
 
@@ -188,17 +227,24 @@ class Scene:
     def has_emitters(self) -> bool:
         return any(m.is_emitter for m in self._meshes)
 
+    @property
+    def has_specular(self) -> bool:
+        """Whether some mesh is a :class:`~dualight.Mirror` or :class:`~dualight.Dielectric`
+        (delta BSDFs, which radiosity cannot handle)."""
+        return any(isinstance(m.material, Mirror | Dielectric) for m in self._meshes)
+
     def add_mesh(
         self,
         vertices: Any,
         faces: Any,
-        reflectance: Sequence[float] = (0.5, 0.5, 0.5),
+        reflectance: Sequence[float] = _DEFAULT_REFLECTANCE,
         emission: Sequence[float] = (0.0, 0.0, 0.0),
         *,
+        material: Material | None = None,
         name: str | None = None,
         degenerate: Literal["raise", "drop"] = "raise",
     ) -> int:
-        """Add a triangle or quad mesh with one diffuse material; returns its index.
+        """Add a triangle or quad mesh with one material; returns its index.
 
         Parameters
         ----------
@@ -208,14 +254,39 @@ class Scene:
             ``(F, 3)`` triangles or ``(F, 4)`` quads of vertex indices. Quads are split along
             their ``v0-v2`` diagonal and should be planar.
         reflectance:
-            Diffuse albedo per RGB channel, each in ``[0, 1]``.
+            Diffuse albedo per RGB channel, each in ``[0, 1]``: shorthand for
+            ``material=Diffuse(reflectance)``. Leave it at its default when giving ``material``.
         emission:
             Radiance (W m^-2 sr^-1) leaving the front side (the right-hand-rule normal), ``>= 0``.
+        material:
+            A :class:`~dualight.Diffuse`, :class:`~dualight.Mirror` or
+            :class:`~dualight.Dielectric` (whose exterior is on the normals' side). ``None``
+            means ``Diffuse(reflectance)``.
+        name:
+            Shown in error messages and used by exporters; ``"mesh<index>"`` by default.
         degenerate:
             Zero-area triangles are an error (``"raise"``, the default, naming the first one) or
             are removed with a warning (``"drop"``, for meshes loaded from files).
+
+        Returns
+        -------
+        int
+            The mesh's index in :attr:`meshes`.
+
+        Raises
+        ------
+        TypeError
+            If ``material`` is not a Diffuse, Mirror or Dielectric.
+        ValueError
+            On malformed geometry, colours out of range, or both a non-default ``reflectance``
+            and a ``material``.
         """
         name = name or f"mesh{len(self._meshes)}"
+        if material is not None and not isinstance(material, Diffuse | Mirror | Dielectric):
+            raise TypeError(
+                f"{name}: material must be a dualight.Diffuse, Mirror or Dielectric, "
+                f"got {type(material).__name__}"
+            )
         v = np.array(vertices, dtype=np.float64, copy=True)
         if v.ndim != 2 or v.shape[1] != 3 or v.shape[0] == 0:
             raise ValueError(f"{name}: vertices must have shape (V, 3) with V > 0, got {v.shape}")
@@ -228,6 +299,14 @@ class Scene:
             )
         tris = _triangulate(faces, len(v), name)
         rho = _colour(reflectance, f"{name}: reflectance", upper=1.0)
+        if material is None:
+            material = Diffuse(rho)
+        elif rho != _DEFAULT_REFLECTANCE:
+            raise ValueError(
+                f"{name}: give either reflectance={rho} or material={material!r}, not both "
+                "(a material carries its own reflectance)"
+            )
+        rho = _reflectance_of(material)
         Le = _colour(emission, f"{name}: emission", upper=None)
 
         # Areas in float32, as the renderer will see the triangles.
@@ -251,7 +330,7 @@ class Scene:
                 raise ValueError(f"{name}: every triangle has zero area")
         for arr in (v, tris, areas):
             arr.flags.writeable = False
-        self._meshes.append(Mesh(v, tris, rho, Le, name, areas))
+        self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material))
         self._compiled = None
         return len(self._meshes) - 1
 
@@ -283,12 +362,21 @@ class Scene:
             positions, triangles, material_of = self.triangle_arrays()
             reflectance = np.array([m.reflectance for m in self._meshes], np.float32)
             emission = np.array([m.emission for m in self._meshes], np.float32)
+            kinds = {
+                Diffuse: _core.BsdfKind.lambertian,
+                Mirror: _core.BsdfKind.mirror,
+                Dielectric: _core.BsdfKind.dielectric,
+            }
+            kind = np.array([int(kinds[type(m.material)]) for m in self._meshes], np.uint32)
+            ior = np.array([getattr(m.material, "ior", 1.0) for m in self._meshes], np.float32)
             self._compiled = _core.Scene(
                 positions.astype(np.float32),
                 triangles.astype(np.uint32),
                 material_of.astype(np.uint32),
                 reflectance,
                 emission,
+                kind=kind,
+                ior=ior,
             )
         return self._compiled
 

@@ -2,6 +2,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+#include <string>
+
+#include "bindings/materials.h"
 #include "bindings/numpy_util.h"
 #include "core/parallel.h"
 #include "geometry/camera.h"
@@ -16,9 +20,12 @@ using IndexArray = py::array_t<uint32_t, py::array::c_style | py::array::forceca
 
 Vec3 to_vec3(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
 
+// One material per row of reflectance/emission. `kind` (BsdfKind values) and `ior` are optional
+// so that diffuse-only callers (radiosity patches) need not pass them.
 std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray& triangles,
                                   const IndexArray& material_of, const FloatArray& reflectance,
-                                  const FloatArray& emission) {
+                                  const FloatArray& emission, const std::optional<IndexArray>& kind,
+                                  const std::optional<FloatArray>& ior) {
   std::vector<float> p = rows_of(positions, 3, "positions");
   std::vector<uint32_t> t = rows_of(triangles, 3, "triangles");
   if (material_of.ndim() != 1) throw py::value_error("material_of must be one-dimensional");
@@ -26,9 +33,19 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
   const std::vector<float> rho = rows_of(reflectance, 3, "reflectance");
   const std::vector<float> Le = rows_of(emission, 3, "emission");
   if (rho.size() != Le.size()) throw py::value_error("reflectance and emission need one row per material");
+  const size_t n_materials = rho.size() / 3;
+  const auto per_material = [&](const auto& a, const char* name) {
+    if (a && (a->ndim() != 1 || static_cast<size_t>(a->size()) != n_materials)) {
+      throw py::value_error(std::string(name) + " needs one entry per material (" + std::to_string(n_materials) + ")");
+    }
+  };
+  per_material(kind, "kind");
+  per_material(ior, "ior");
   std::vector<Material> materials;
-  for (size_t i = 0; i < rho.size() / 3; ++i) {
-    materials.push_back({Lambertian{Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2])},
+  for (size_t i = 0; i < n_materials; ++i) {
+    const uint32_t k = kind ? kind->data()[i] : static_cast<uint32_t>(BsdfKind::Lambertian);
+    const float eta = ior ? ior->data()[i] : 1.5f;
+    materials.push_back({make_bsdf(k, Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2]), eta),
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
   py::gil_scoped_release release;  // the BVH build can take a while on large meshes
@@ -41,7 +58,11 @@ void bind_geometry(py::module_& m) {
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene",
                                             "Immutable triangle scene committed to Embree (built by dualight.Scene).")
       .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
-           py::arg("reflectance"), py::arg("emission"))
+           py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
+           py::arg("ior") = py::none(),
+           "Triangles with one material per row of reflectance and emission. kind (BsdfKind values, "
+           "default lambertian) and ior (a dielectric's interior IOR) are optional per-material arrays; "
+           "reflectance is the diffuse albedo or the mirror's reflectance.")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly("bounds",

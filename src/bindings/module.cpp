@@ -5,6 +5,7 @@ namespace py = pybind11;
 
 namespace dualight::bindings {
 void bind_geometry(py::module_& m);
+void bind_materials(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
 void bind_radiosity(py::module_& m);
@@ -13,6 +14,7 @@ void bind_radiosity(py::module_& m);
 PYBIND11_MODULE(_core, m) {
   m.doc() = "dualight's compiled core; use the `dualight` package instead of this module.";
   dualight::bindings::bind_geometry(m);
+  dualight::bindings::bind_materials(m);
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
   dualight::bindings::bind_radiosity(m);

@@ -37,7 +37,7 @@ from typing import Any, Literal
 import numpy as np
 
 from dualight import _core
-from dualight.radiosity.patches import PatchMesh
+from dualight.radiosity.patches import PatchMesh, require_diffuse
 from dualight.scene import Camera, Scene
 
 Oracle = Literal["bf", "importance"]
@@ -132,6 +132,7 @@ class HierarchicalSolver:
     ) -> None:
         if oracle not in ("bf", "importance"):
             raise ValueError(f"oracle must be 'bf' or 'importance', got {oracle!r}")
+        require_diffuse(scene)
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera

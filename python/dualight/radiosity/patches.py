@@ -4,6 +4,9 @@
 Patches are one-sided, as in classical radiosity: each sends and receives light on the side of
 its normal (the right-hand rule on the input triangle's vertex order, as everywhere in
 dualight). Two-sided surfaces need a mesh per side.
+
+Radiosity assumes diffuse surfaces: scenes with a :class:`~dualight.Mirror` or
+:class:`~dualight.Dielectric` mesh are refused (:func:`require_diffuse`).
 """
 
 from __future__ import annotations
@@ -13,10 +16,25 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dualight.materials import Diffuse
 from dualight.scene import Scene
 
 if TYPE_CHECKING:
     from dualight import _core
+
+
+def require_diffuse(scene: Scene) -> None:
+    """Raise ``ValueError`` naming the first mesh of ``scene`` that is not :class:`Diffuse`.
+
+    Radiosity's linear system ``B = E + rho F B`` holds for Lambertian surfaces only; a mirror
+    or glass would silently be rendered as something else.
+    """
+    for mesh in scene.meshes:
+        if not isinstance(mesh.material, Diffuse):
+            raise ValueError(
+                f"radiosity assumes diffuse surfaces; mesh {mesh.name!r} is a "
+                f"{type(mesh.material).__name__} (use dualight.render for specular scenes)"
+            )
 
 
 def _grid(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -39,7 +57,7 @@ class PatchMesh:
     Parameters
     ----------
     scene:
-        A :class:`dualight.Scene`.
+        A :class:`dualight.Scene` whose meshes are all :class:`~dualight.Diffuse`.
     max_edge:
         Longest allowed patch edge (scene units).
     max_area:
@@ -66,6 +84,7 @@ class PatchMesh:
             raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
         if not scene.meshes:
             raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+        require_diffuse(scene)
         if max_edge is None and max_area is None:
             raise ValueError("give max_edge or max_area")
         for name, value in (("max_edge", max_edge), ("max_area", max_area)):
@@ -117,6 +136,7 @@ class PatchMesh:
     def _set_triangles(
         self, scene: Scene, vertices: np.ndarray, triangles: np.ndarray, mesh_index: np.ndarray
     ) -> None:
+        require_diffuse(scene)
         self.vertices = np.asarray(vertices, dtype=np.float64)
         self.triangles = np.asarray(triangles, dtype=np.int64)
         self.mesh_index = np.asarray(mesh_index, dtype=np.int64)

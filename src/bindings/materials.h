@@ -1,0 +1,24 @@
+// BSDFs built from the Python description's arrays, shared by the scene binding (one BSDF per
+// mesh) and the BSDF test binding.
+#pragma once
+#include <cstdint>
+#include <type_traits>
+#include <variant>
+
+#include "materials/bsdf.h"
+
+namespace dualight::bindings {
+
+// A BSDF's kind as Python passes it; the value is the alternative's index in `Bsdf`.
+enum class BsdfKind : uint32_t { Lambertian = 0, Mirror = 1, Dielectric = 2 };
+static_assert(std::is_same_v<std::variant_alternative_t<0, Bsdf>, Lambertian> &&
+                  std::is_same_v<std::variant_alternative_t<1, Bsdf>, Mirror> &&
+                  std::is_same_v<std::variant_alternative_t<2, Bsdf>, Dielectric>,
+              "BsdfKind values must follow the order of Bsdf's alternatives");
+
+// `reflectance` is the Lambertian albedo or the mirror's reflectance (ignored by a dielectric),
+// `ior` the dielectric's interior IOR (ignored by the others). Throws py::value_error naming
+// the problem: an unknown kind, a reflectance outside [0, 1], an IOR that is not finite and > 0.
+Bsdf make_bsdf(uint32_t kind, const Color& reflectance, float ior);
+
+}  // namespace dualight::bindings
