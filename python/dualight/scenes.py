@@ -454,3 +454,328 @@ def cube(
     v, f = _quads_mesh([_orient(light, centre, inward=True)])
     scene.add_mesh(v, f, reflectance=rho, emission=Le, name="light")
     return scene
+
+
+# Icosphere ------------------------------------------------------------------------------------
+_ICOSAHEDRON_FACES = np.array(
+    [
+        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
+        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
+        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
+        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+    ],
+    dtype=np.int64,
+)  # fmt: skip
+
+
+def _icosahedron() -> np.ndarray:
+    """The 12 unit vertices of a regular icosahedron (the order of ``_ICOSAHEDRON_FACES``)."""
+    phi = 0.5 * (1.0 + math.sqrt(5.0))
+    v = np.array(
+        [
+            [-1, phi, 0], [1, phi, 0], [-1, -phi, 0], [1, -phi, 0],
+            [0, -1, phi], [0, 1, phi], [0, -1, -phi], [0, 1, -phi],
+            [phi, 0, -1], [phi, 0, 1], [-phi, 0, -1], [-phi, 0, 1],
+        ],
+        dtype=np.float64,
+    )  # fmt: skip
+    return v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+def icosphere(
+    centre: Sequence[float], radius: float, subdivisions: int = 3
+) -> tuple[np.ndarray, np.ndarray]:
+    """A sphere as a subdivided icosahedron: flat triangles facing outward.
+
+    Each subdivision splits every triangle into four at its edge midpoints, which are then
+    pushed out to the sphere, so the mesh has ``20 * 4**subdivisions`` triangles and
+    ``10 * 4**subdivisions + 2`` vertices, all at distance ``radius`` from ``centre``. It is
+    closed (every edge is shared by exactly two triangles) and every triangle's right-hand-rule
+    normal points away from the centre. Its area is a little less than the sphere's, ``4 pi
+    r^2``: by 24 %, 7.2 %, 1.9 %, 0.48 % and 0.12 % at 0 to 4 subdivisions (a
+    factor of about 4 per subdivision).
+
+    dualight has no shading normals, so the sphere renders faceted; Mitsuba gets the same flat
+    triangles (``face_normals=True`` in :mod:`dualight.mitsuba`).
+
+    Parameters
+    ----------
+    centre : sequence of 3 floats
+        The sphere's centre.
+    radius : float
+        Its radius, ``> 0``.
+    subdivisions : int, optional
+        Number of 1-to-4 splits, in ``[0, 8]`` (8 makes 1,310,720 triangles).
+
+    Returns
+    -------
+    vertices : ndarray of shape (V, 3), float64
+    faces : ndarray of shape (F, 3), int64
+        Ready for :meth:`dualight.Scene.add_mesh`.
+
+    Raises
+    ------
+    ValueError
+        If ``centre`` is not 3 finite numbers, ``radius`` is not finite and positive, or
+        ``subdivisions`` is not an int in ``[0, 8]``.
+    """
+    c = np.asarray(centre, dtype=np.float64)
+    if c.shape != (3,) or not np.all(np.isfinite(c)):
+        raise ValueError(f"icosphere: centre must be 3 finite numbers, got {centre!r}")
+    r = float(radius)
+    if not (math.isfinite(r) and r > 0.0):
+        raise ValueError(f"icosphere: radius must be finite and > 0, got {radius!r}")
+    if (
+        isinstance(subdivisions, bool)
+        or not isinstance(subdivisions, int | np.integer)
+        or not 0 <= subdivisions <= 8
+    ):
+        raise ValueError(f"icosphere: subdivisions must be an int in [0, 8], got {subdivisions!r}")
+    v = _icosahedron()
+    f = _ICOSAHEDRON_FACES.copy()
+    for _ in range(int(subdivisions)):
+        # One midpoint per undirected edge, numbered after the existing vertices.
+        edges = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+        unique, inverse = np.unique(np.sort(edges, axis=1), axis=0, return_inverse=True)
+        mid = v[unique[:, 0]] + v[unique[:, 1]]
+        v = np.concatenate([v, mid / np.linalg.norm(mid, axis=1, keepdims=True)])
+        m01, m12, m20 = len(v) - len(unique) + np.ravel(inverse).reshape(3, -1)
+        a, b, cc = f[:, 0], f[:, 1], f[:, 2]
+        f = np.concatenate(
+            [
+                np.stack([a, m01, m20], axis=1),
+                np.stack([m01, b, m12], axis=1),
+                np.stack([m20, m12, cc], axis=1),
+                np.stack([m01, m12, m20], axis=1),
+            ]
+        )
+    # The icosahedron's face list is wound outward and splitting keeps the winding; check it.
+    tri = v[f]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    outward = np.einsum("ij,ij->i", normals, tri.sum(axis=1))
+    if np.any(outward <= 0.0):  # pragma: no cover - a broken face table
+        raise AssertionError("icosphere: a face is wound inward")
+    return c + r * v, f
+
+
+# Door ajar ------------------------------------------------------------------------------------
+#: Inside of each room (x, y, z) in metres, and the wall between them.
+DOOR_ROOM_SIZE = (4.0, 2.5, 4.0)
+DOOR_WALL_THICKNESS = 0.1
+#: The doorway in the wall between the rooms: x range and height.
+DOOR_DOORWAY_X = (1.55, 2.45)
+DOOR_DOORWAY_HEIGHT = 2.0
+#: The door leaf: thickness, clearance to the jamb at its free edge, how far it reaches past
+#: the hinge axis into the wall, and how far it reaches into the floor and above the lintel.
+_DOOR_THICKNESS = 0.04
+_DOOR_CLEARANCE = 0.003
+_DOOR_PAST_HINGE = 0.01
+_DOOR_OVERLAP_Y = 0.02
+#: The emitter: a panel on the bright room's side of the wall, beside the doorway on the side
+#: of the door's free edge, facing away from the wall (x range, y range, distance from it).
+_DOOR_LIGHT_X = (0.15, 1.25)
+_DOOR_LIGHT_Y = (0.4, 2.2)
+_DOOR_LIGHT_OFFSET = 0.01
+DOOR_LIGHT_RADIANCE = (400.0, 340.0, 260.0)
+DOOR_DEFAULT_OPENING = 10.0
+_DOOR_MATERIALS: dict[str, tuple[float, float, float]] = {
+    "dark_wall": (0.70, 0.68, 0.62),
+    "dark_floor": (0.55, 0.42, 0.30),
+    "dark_ceiling": (0.75, 0.75, 0.75),
+    "door": (0.60, 0.32, 0.16),
+    "bright_wall": (0.80, 0.78, 0.70),
+    "bright_floor": (0.45, 0.50, 0.60),
+    "bright_ceiling": (0.80, 0.80, 0.80),
+    "light": (0.80, 0.80, 0.80),
+}
+
+
+def _door_leaf(opening: float) -> tuple[np.ndarray, np.ndarray]:
+    """The door of :func:`door_ajar` opened by ``opening`` degrees: a closed box of 6 quads
+    (vertices, faces) with outward normals. See :func:`door_ajar` for its placement."""
+    theta = math.radians(float(opening))
+    x0, x1 = DOOR_DOORWAY_X
+    z_hinge = DOOR_ROOM_SIZE[2] + DOOR_WALL_THICKNESS  # the bright room's face of the wall
+    hinge = np.array([x1, 0.0, z_hinge])
+    # Along the leaf (hinge -> free edge) and across it (towards the dark room).
+    u = np.array([-math.cos(theta), 0.0, math.sin(theta)])
+    v = np.array([-math.sin(theta), 0.0, -math.cos(theta)])
+    width = (x1 - x0) - _DOOR_CLEARANCE
+    s_range = (-_DOOR_PAST_HINGE, width)
+    t_range = (0.0, _DOOR_THICKNESS)
+    y_range = (-_DOOR_OVERLAP_Y, DOOR_DOORWAY_HEIGHT + _DOOR_OVERLAP_Y)
+
+    def corner(i: int, j: int, k: int) -> np.ndarray:
+        p = hinge + s_range[i] * u + t_range[j] * v
+        p[1] = y_range[k]
+        return p
+
+    c = {(i, j, k): corner(i, j, k) for i in (0, 1) for j in (0, 1) for k in (0, 1)}
+    quads = [
+        np.array([c[0, j, 0], c[1, j, 0], c[1, j, 1], c[0, j, 1]]) for j in (0, 1)
+    ] + [
+        np.array([c[i, 0, 0], c[i, 1, 0], c[i, 1, 1], c[i, 0, 1]]) for i in (0, 1)
+    ] + [
+        np.array([c[0, 0, k], c[1, 0, k], c[1, 1, k], c[0, 1, k]]) for k in (0, 1)
+    ]
+    centre = np.mean(list(c.values()), axis=0)
+    return _quads_mesh([_orient(q, centre, inward=False) for q in quads])
+
+
+def door_ajar(
+    resolution: tuple[int, int] = (128, 128),
+    *,
+    opening: float = DOOR_DEFAULT_OPENING,
+    light_scale: float = 1.0,
+    reflectance_scale: float = 1.0,
+) -> Scene:
+    """Veach's door: a dark room lit only through a door ajar from a bright room next door.
+
+    The hard case of Veach and Guibas, "Metropolis Light Transport" (SIGGRAPH 1997): the
+    camera's room has no light of its own, and every path that carries light into it squeezes
+    through the gap of a door that is barely open. A path tracer finds the gap only by chance
+    (next-event estimation from the dark room never reaches the light), so it is very noisy:
+    with the defaults the median relative standard deviation of one sample is about 16 times
+    the pixel value (60 at 3 degrees, 30 at 5, 21 at 7).
+
+    Layout (metres; y is up, the camera looks roughly along +z)
+        The dark room (with the camera) is the box ``[0, 4] x [0, 2.5] x [0, 4]``, the bright
+        room ``[0, 4] x [0, 2.5] x [4.1, 8.1]``; the wall between them is 0.1 m thick. Each
+        room is a closed box of one-sided quads facing into it. The wall has a doorway
+        ``x in [1.55, 2.45]``, ``y in [0, 2]`` whose thickness is lined (two jambs, the
+        lintel's underside and a sill), so the doorway is the only way between the rooms.
+    Door
+        A closed box 0.04 m thick (``_door_leaf``), hinged on a vertical axis at the
+        doorway's bright-room edge on the ``x = 2.45`` side and swung into the bright room by
+        ``opening`` degrees. Closed, it would fill the doorway but for 3 mm at its free edge
+        (at the ``x = 1.55`` jamb); it reaches 1 cm past the hinge axis into the wall and 2 cm
+        into the floor and above the lintel, so light passes only through the gap between the
+        door and its frame: the slit along its free edge, about ``0.9 sin(opening) - 0.04`` m
+        wide (1 cm at 3 degrees, 4 cm at 5, 12 cm at 10, the default), and, since the door
+        stands in the bright room, the wedge between the door and the wall above its top
+        edge, which narrows to nothing at the hinge.
+    Light
+        ``light``: a 1.1 m x 1.8 m panel on the bright room's face of the wall, beside the
+        doorway on the side of the door's free edge (``x in [0.15, 1.25]``, ``y in [0.4,
+        2.2]``), 1 cm off the wall and facing away from it (+z), radiance ``light_scale *
+        (400, 340, 260)``. Every point of the dark room and the doorway is behind the panel's
+        plane, so the camera never sees the emitter and the dark room gets no direct light: a
+        path to a dark-room surface reflects at least once in the bright room and once in the
+        dark room, and passes the gap. Through the gap the camera sees a sliver of the bright
+        room (pixels lit by paths with one reflection).
+    Materials
+        Two-sided diffuse, reflectances ``reflectance_scale`` times: dark room walls, jambs
+        and lintel (0.70, 0.68, 0.62), its floor and the sill (0.55, 0.42, 0.30), its ceiling
+        0.75; door (0.60, 0.32, 0.16); bright room walls (0.80, 0.78, 0.70), floor (0.45,
+        0.50, 0.60) and ceiling 0.8; the light panel reflects 0.8. The largest is 0.8, so
+        ``reflectance_scale <= 1.25``.
+    Camera
+        In the dark room at ``(3.3, 1.5, 0.4)``, looking at ``(1.9, 0.8, 4.0)`` with ``fov``
+        65 degrees: it sees the wall with the doorway (the door's hinge on the left of the
+        image, the gap on the right), the floor in front of it and the side wall.
+
+    Meshes (names): ``dark_floor``, ``dark_ceiling``, ``dark_walls``, ``bright_floor``,
+    ``bright_ceiling``, ``bright_walls`` (``dark_*`` and ``bright_*`` bound their room's box
+    exactly), ``doorway`` (jambs and lintel), ``doorway_sill``, ``door`` and ``light``; 54
+    triangles.
+
+    Parameters
+    ----------
+    resolution : (int, int), optional
+        Image ``(width, height)``.
+    opening : float, optional
+        The door's angle in degrees, in ``(0, 90]``. The default, 10 degrees, is hard for a
+        path tracer, yet a Mitsuba ``path`` reference at 64 x 64 converges in minutes
+        (``tests/references/README.md``).
+    light_scale : float, optional
+        Multiplies the emitted radiance, ``> 0``.
+    reflectance_scale : float, optional
+        Multiplies every reflectance, in ``(0, 1.25]``.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    ValueError
+        If ``opening`` is outside ``(0, 90]`` or a scale is out of its range.
+    """
+    opening = float(opening)
+    if not (math.isfinite(opening) and 0.0 < opening <= 90.0):
+        raise ValueError(f"door_ajar: opening must be in (0, 90] degrees, got {opening!r}")
+    light_scale = float(light_scale)
+    if not (math.isfinite(light_scale) and light_scale > 0.0):
+        raise ValueError(f"door_ajar: light_scale must be finite and > 0, got {light_scale!r}")
+    reflectance_scale = float(reflectance_scale)
+    largest = max(max(c) for c in _DOOR_MATERIALS.values())
+    if not (math.isfinite(reflectance_scale) and 0.0 < reflectance_scale <= 1.0 / largest):
+        raise ValueError(
+            f"door_ajar: reflectance_scale must be in (0, {1.0 / largest:g}] so every albedo "
+            f"stays <= 1, got {reflectance_scale!r}"
+        )
+
+    def rho(key: str) -> tuple[float, float, float]:
+        r, g, b = (reflectance_scale * c for c in _DOOR_MATERIALS[key])
+        return (r, g, b)
+
+    sx, sy, sz = DOOR_ROOM_SIZE
+    wall = DOOR_WALL_THICKNESS
+    x0, x1 = DOOR_DOORWAY_X
+    h = DOOR_DOORWAY_HEIGHT
+    camera = Camera(
+        origin=(3.3, 1.5, 0.4),
+        target=(1.9, 0.8, 4.0),
+        up=(0.0, 1.0, 0.0),
+        fov=65.0,
+        resolution=tuple(resolution),
+    )
+    scene = Scene(camera=camera)
+
+    def add(name: str, quads: list[np.ndarray], towards: np.ndarray, **kw: object) -> None:
+        v, f = _quads_mesh([_orient(q, towards, inward=True) for q in quads])
+        scene.add_mesh(v, f, name=name, **kw)  # type: ignore[arg-type]
+
+    for room, z0, wall_z in (("dark", 0.0, sz), ("bright", sz + wall, sz + wall)):
+        lo = np.array([0.0, 0.0, z0])
+        hi = lo + np.array(DOOR_ROOM_SIZE)
+        centre = 0.5 * (lo + hi)
+        add(f"{room}_floor", [_axis_rect(1, 0.0, lo, hi)], centre, reflectance=rho(f"{room}_floor"))
+        add(f"{room}_ceiling", [_axis_rect(1, sy, lo, hi)], centre,
+            reflectance=rho(f"{room}_ceiling"))  # fmt: skip
+        far_z = lo[2] if room == "dark" else hi[2]
+        walls = [
+            _axis_rect(0, 0.0, lo, hi),
+            _axis_rect(0, sx, lo, hi),
+            _axis_rect(2, far_z, lo, hi),
+        ]
+        # The wall between the rooms: left of, right of and above the doorway.
+        for a0, a1, y0, y1 in ((0.0, x0, 0.0, sy), (x1, sx, 0.0, sy), (x0, x1, h, sy)):
+            walls.append(_axis_rect(2, wall_z, (a0, y0, 0.0), (a1, y1, 0.0)))
+        add(f"{room}_walls", walls, centre, reflectance=rho(f"{room}_wall"))
+
+    # The doorway's lining, facing into the doorway.
+    lo, hi = np.array([x0, 0.0, sz]), np.array([x1, h, sz + wall])
+    inside = 0.5 * (lo + hi)
+    lining = [
+        _axis_rect(0, x0, lo, hi),
+        _axis_rect(0, x1, lo, hi),
+        _axis_rect(1, h, lo, hi),
+    ]
+    add("doorway", lining, inside, reflectance=rho("dark_wall"))
+    add("doorway_sill", [_axis_rect(1, 0.0, lo, hi)], inside, reflectance=rho("dark_floor"))
+
+    v, f = _door_leaf(opening)
+    scene.add_mesh(v, f, reflectance=rho("door"), name="door")
+
+    z_light = sz + wall + _DOOR_LIGHT_OFFSET
+    (lx0, lx1), (ly0, ly1) = _DOOR_LIGHT_X, _DOOR_LIGHT_Y
+    light = _axis_rect(2, z_light, (lx0, ly0, 0.0), (lx1, ly1, 0.0))
+    add(
+        "light",
+        [light],
+        np.array([0.0, 0.0, z_light + 1.0]),
+        reflectance=rho("light"),
+        emission=tuple(light_scale * c for c in DOOR_LIGHT_RADIANCE),
+    )
+    return scene
