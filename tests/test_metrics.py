@@ -258,3 +258,13 @@ def test_mask_leaves_out_pixels_and_blocks() -> None:
         metrics.compare(image, var, ref, var, mask=np.ones((4, 4), dtype=bool))
     with pytest.raises(ValueError, match="no pixel"):
         metrics.welch_test(image, var, ref, var, mask=np.zeros((32, 32), dtype=bool))
+
+
+def test_block_mean_averages_blocks() -> None:
+    image = np.arange(4 * 6 * 3, dtype=np.float64).reshape(4, 6, 3)
+    out = metrics.block_mean(image, 2)
+    assert out.shape == (2, 3, 3)
+    np.testing.assert_allclose(out[0, 0], image[:2, :2].reshape(-1, 3).mean(axis=0))
+    assert metrics.block_mean(image, 4).shape == (1, 1, 3)  # trailing columns dropped
+    with pytest.raises(ValueError, match="block"):
+        metrics.block_mean(image, 5)

@@ -1,17 +1,26 @@
-"""The light tracer and BDPT against the stored Mitsuba 3 references (tests/references):
-per-pixel and per-block Welch tests with both images' variances, and Delta E 2000, each with a
-negative control that must fail the same comparison. (The path tracer's own rows are in
-test_path_vs_mitsuba.py.)
+"""The path tracer, the light tracer and BDPT against the stored Mitsuba 3 references
+(tests/references): Welch tests with both images' variances and CIE Delta E 2000, each with a
+negative control that must fail the same comparison. (The path tracer's Cornell and furnace
+rows are in test_path_vs_mitsuba.py.)
 
-The light tracer cannot render light that reaches the camera by a specular bounce (a mirror or
-glass seen directly): those pixels are masked out of its comparisons (see
-``renderable_by_light_tracing``), and nowhere else.
+How each scene is judged, and why:
+
+* Cornell box: per pixel and per 8x8 block, Delta E on pixels, as in the foundation.
+* Door ajar: light reaches the camera's room only through a gap, so at test budgets each
+  pixel's estimate is heavy-tailed: the rare paths through the gap are missing from most
+  pixels, whose mean and sample variance are then both too low together, and the per-pixel
+  normal approximation fails (|z| up to 10-20 on pixels whose blocks agree). Blocks average
+  enough paths for it to hold: the test is per 4x4 and 8x8 block, and Delta E is taken on
+  4x4 block means (on pixels it would measure noise). Per-pixel pass fractions are printed.
+* The light tracer cannot render light that reaches the camera by a specular bounce (a mirror
+  or glass seen directly): those pixels are masked out of its comparisons
+  (``renderable_by_light_tracing``), and nowhere else.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +30,7 @@ import dualight
 from dualight import metrics, scenes
 
 REFERENCES = Path(__file__).parent / "references"
+PASS = 0.9975  # the foundation's pass fraction: with 64 blocks, every block must pass
 
 
 @dataclass(frozen=True)
@@ -29,6 +39,10 @@ class Case:
     build: Callable[..., dualight.Scene]  # keyword arguments: the negative control's change
     wrong: dict
     spp: dict[str, int]  # per method: enough for the negative control to fail
+    pixel_test: bool = True  # else per-pixel results are reported, not asserted (see above)
+    blocks: tuple[int, ...] = (8,)
+    delta_e_block: int = 1
+    methods: tuple[str, ...] = field(default=("light", "bdpt"))
 
 
 CASES = {
@@ -38,7 +52,18 @@ CASES = {
         {"light_scale": 0.97},
         {"light": 1024, "bdpt": 512},
     ),
+    "door": Case(
+        "door_64",
+        lambda **kw: scenes.door_ajar(resolution=(64, 64), **kw),
+        {"light_scale": 0.9},
+        {"path": 1536, "light": 2048, "bdpt": 512},
+        pixel_test=False,
+        blocks=(4, 8),
+        delta_e_block=4,
+        methods=("path", "light", "bdpt"),
+    ),
 }
+RUNS = [(name, method) for name, case in sorted(CASES.items()) for method in case.methods]
 
 
 def _reference(name: str) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -74,7 +99,32 @@ def renderable_by_light_tracing(scene: dualight.Scene, subsamples: int = 4) -> n
     return ~bad.reshape(cam.height, cam.width)
 
 
-def _compare(case: Case, method: str, seed: int, **wrong) -> metrics.Comparison:
+@dataclass(frozen=True)
+class Outcome:
+    pixel: metrics.WelchResult
+    blocks: dict[int, metrics.WelchResult]
+    delta_e: float
+    relmse: float
+
+    def passed(self, case: Case) -> bool:
+        return (
+            (not case.pixel_test or self.pixel.pass_fraction >= PASS)
+            and all(b.pass_fraction >= PASS for b in self.blocks.values())
+            and self.delta_e < 1.0
+        )
+
+    def __str__(self) -> str:
+        blocks = ", ".join(
+            f"{k}x{k} blocks {100 * b.pass_fraction:.2f}% (max |z| {b.max_z:.3g})"
+            for k, b in self.blocks.items()
+        )
+        return (
+            f"pixels {100 * self.pixel.pass_fraction:.2f}% (max |z| {self.pixel.max_z:.3g}), "
+            f"{blocks}, dE2000 mean {self.delta_e:.3g}, relMSE {self.relmse:.3g}"
+        )
+
+
+def _compare(case: Case, method: str, seed: int, **wrong) -> Outcome:
     ref, ref_var, info = _reference(case.reference)
     scene = case.build(**wrong)
     image = dualight.render(
@@ -87,20 +137,33 @@ def _compare(case: Case, method: str, seed: int, **wrong) -> metrics.Comparison:
         progress=False,
     )
     mask = renderable_by_light_tracing(scene) if method == "light" else None
-    return metrics.compare(image, image.variance, ref, ref_var, mask=mask)
+    keep = np.ones(ref.shape[:2], dtype=bool) if mask is None else mask
+    mean, var = np.asarray(image), image.variance
+
+    def welch(block: int) -> metrics.WelchResult:
+        return metrics.welch_test(mean, var, ref, ref_var, block=block, mask=mask)
+
+    b = case.delta_e_block
+    keep3 = np.repeat(keep[..., None], 3, axis=2).astype(np.float64)
+    block_mask = None if mask is None else metrics.block_mean(keep3, b)[..., 0] == 1.0
+    delta_e = metrics.delta_e2000(
+        metrics.block_mean(mean, b), metrics.block_mean(ref, b), mask=block_mask
+    )["mean"]
+    return Outcome(
+        pixel=welch(1),
+        blocks={k: welch(k) for k in case.blocks},
+        delta_e=delta_e,
+        relmse=metrics.relmse(mean[keep][None], ref[keep][None]),
+    )
 
 
-@pytest.mark.parametrize("method", ["light", "bdpt"])
-@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize(("name", "method"), RUNS)
 def test_matches_mitsuba_and_the_negative_control_fails(name: str, method: str) -> None:
     case = CASES[name]
     result = _compare(case, method, seed=21)
     print(f"\n{name} {method} vs Mitsuba: {result}")
-    assert result.pixel.pass_fraction >= 0.9975, result
-    assert result.blocks.pass_fraction >= 0.9975, result
-    assert result.delta_e["mean"] < 1.0, result
-    assert result.passed
+    assert result.passed(case), result
     wrong = _compare(case, method, seed=21, **case.wrong)
     print(f"{name} {method} {case.wrong} vs Mitsuba: {wrong}")
-    assert not wrong.passed
-    assert wrong.blocks.pass_fraction < 0.9975
+    assert not wrong.passed(case)
+    assert min(b.pass_fraction for b in wrong.blocks.values()) < PASS

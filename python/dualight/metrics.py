@@ -21,7 +21,16 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["Comparison", "WelchResult", "compare", "delta_e2000", "relmse", "rmse", "welch_test"]
+__all__ = [
+    "Comparison",
+    "WelchResult",
+    "block_mean",
+    "compare",
+    "delta_e2000",
+    "relmse",
+    "rmse",
+    "welch_test",
+]
 
 _REC709_Y = np.array([0.2126, 0.7152, 0.0722])
 
@@ -47,6 +56,21 @@ def _same_shape(**arrays: np.ndarray) -> None:
     for name, a in rest:
         if a.shape != ref.shape:
             raise ValueError(f"shape mismatch: {first} is {ref.shape} but {name} is {a.shape}")
+
+
+def block_mean(image: ArrayLike, block: int) -> np.ndarray:
+    """Average over ``block x block`` pixel blocks (trailing rows and columns that do not fill a
+    block are dropped): ``H x W x C`` to ``H // block x W // block x C``.
+
+    Colour differences of a noisy estimate measure mostly its noise; on block means they
+    measure its colour (e.g. :func:`delta_e2000` of the block means of a heavy-tailed render).
+    """
+    x = _image(image, "image")
+    h, w, c = x.shape
+    if int(block) != block or not 1 <= block <= min(h, w):
+        raise ValueError(f"block must be an integer in [1, {min(h, w)}], got {block}")
+    hb, wb = h // block, w // block
+    return x[: hb * block, : wb * block].reshape(hb, block, wb, block, c).mean(axis=(1, 3))
 
 
 def rmse(image: ArrayLike, reference: ArrayLike) -> float:
