@@ -333,3 +333,124 @@ def test_door_bad_arguments(kwargs: dict) -> None:
 def test_door_largest_reflectance_scale_is_allowed() -> None:
     scene = scenes.door_ajar(resolution=(8, 8), reflectance_scale=1.25)
     assert max(max(m.reflectance) for m in scene.meshes) == pytest.approx(1.0)
+
+
+# Cornell box with caustics ---------------------------------------------------------------------
+CLASSIC_NAMES = [
+    "floor", "ceiling", "back_wall", "green_wall", "red_wall", "short_block", "tall_block", "light"
+]  # fmt: skip
+# sha256 of the classic box's meshes (names, vertices, triangles, reflectance, emission,
+# material) and camera as built before the caustics variant existed: stored references
+# (cornell_64, cornell_64_full) depend on it.
+CLASSIC_FINGERPRINT = "4b0eea9f9e4838b8f5a0a676cb73bb57683524d3acd0343d9f242e44f34a7368"
+
+
+def _fingerprint(scene: dualight.Scene) -> str:
+    import hashlib
+
+    h = hashlib.sha256()
+    for m in scene.meshes:
+        h.update(m.name.encode())
+        h.update(np.ascontiguousarray(m.vertices, np.float64).tobytes())
+        h.update(np.ascontiguousarray(m.triangles, np.int64).tobytes())
+        h.update(np.array(m.reflectance + m.emission, np.float64).tobytes())
+        h.update(type(m.material).__name__.encode())
+    c = scene.camera
+    h.update(repr((c.origin, c.target, c.up, c.fov, c.resolution)).encode())
+    return h.hexdigest()
+
+
+def test_cornell_classic_unchanged() -> None:
+    classic = scenes.cornell_box()
+    assert [m.name for m in classic.meshes] == CLASSIC_NAMES
+    assert all(isinstance(m.material, dualight.Diffuse) for m in classic.meshes)
+    assert _fingerprint(classic) == CLASSIC_FINGERPRINT
+    assert _fingerprint(scenes.cornell_box(variant="classic")) == CLASSIC_FINGERPRINT
+    # The fingerprint sees a change: a negative control.
+    assert _fingerprint(scenes.cornell_box(reflectance_scale=0.999)) != CLASSIC_FINGERPRINT
+
+
+def test_cornell_caustics_spheres() -> None:
+    scene = scenes.cornell_box(variant="caustics")
+    classic = scenes.cornell_box()
+    names = [m.name for m in scene.meshes]
+    assert names == [
+        "floor", "ceiling", "back_wall", "green_wall", "red_wall",
+        "mirror_sphere", "glass_sphere", "light",
+    ]  # fmt: skip
+    # The room, light and camera are the classic ones.
+    for name in ("floor", "ceiling", "back_wall", "green_wall", "red_wall", "light"):
+        a = next(m for m in classic.meshes if m.name == name)
+        b = next(m for m in scene.meshes if m.name == name)
+        np.testing.assert_array_equal(a.vertices, b.vertices)
+        assert a.reflectance == b.reflectance and a.emission == b.emission
+    assert scene.camera == classic.camera
+    mirror = next(m for m in scene.meshes if m.name == "mirror_sphere")
+    glass = next(m for m in scene.meshes if m.name == "glass_sphere")
+    assert mirror.material == dualight.Mirror((1.0, 1.0, 1.0))
+    assert glass.material == dualight.Dielectric(ior=1.5)
+    assert not mirror.is_emitter and not glass.is_emitter
+    lo, hi = classic.bounds()
+    for mesh, left, back in ((mirror, True, True), (glass, False, False)):
+        v = mesh.vertices
+        centre = 0.5 * (v.min(axis=0) + v.max(axis=0))
+        radius = np.linalg.norm(v - centre, axis=1)
+        assert 90.0 <= radius.mean() <= 100.0 and np.ptp(radius) < 1e-6 * radius.mean()
+        # Resting on the floor (y = 0), inside the room, away from the walls.
+        assert v[:, 1].min() == pytest.approx(0.0, abs=1e-9)
+        assert np.all(v > lo + [60.0, -1e-9, 60.0]) and np.all(v < hi - 60.0)
+        # Left in the image is +x (the red wall's side); the back is +z.
+        assert (centre[0] > 278.0) == left and (centre[2] > 279.6) == back
+        # Closed, and the normals point out (the dielectric's exterior side).
+        assert np.all(_edge_counts(mesh.triangles) == 2)
+        _, n = _areas_normals(v, mesh.triangles)
+        assert np.all(np.einsum("ij,ij->i", n, v[mesh.triangles].mean(axis=1) - centre) > 0.0)
+    # The two spheres are apart.
+    assert np.linalg.norm(mirror.vertices.mean(axis=0) - glass.vertices.mean(axis=0)) > 250.0
+
+
+def test_cornell_caustics_options() -> None:
+    scene = scenes.cornell_box(variant="caustics", ior=1.33, reflectance_scale=0.9,
+                               light_scale=2.0)  # fmt: skip
+    by_name = {m.name: m for m in scene.meshes}
+    assert by_name["glass_sphere"].material == dualight.Dielectric(ior=1.33)
+    assert by_name["mirror_sphere"].material == dualight.Mirror((0.9, 0.9, 0.9))
+    np.testing.assert_allclose(by_name["floor"].reflectance, 0.9 * np.array(scenes.CORNELL_WHITE))
+    np.testing.assert_allclose(by_name["light"].emission,
+                               2.0 * np.array(scenes.CORNELL_LIGHT_RADIANCE))  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"variant": "spheres"}, "unknown variant 'spheres'"),
+        ({"variant": "Caustics"}, "unknown variant"),
+        ({"light_scale": -1.0}, "light_scale"),
+        ({"light_scale": float("nan")}, "light_scale"),
+        ({"reflectance_scale": -0.1}, "reflectance_scale"),
+        ({"reflectance_scale": 1.2}, "reflectance_scale"),
+        ({"variant": "caustics", "reflectance_scale": 1.01}, "reflectance_scale"),
+        ({"variant": "caustics", "ior": 0.0}, "ior"),
+        ({"variant": "caustics", "ior": float("inf")}, "ior"),
+    ],
+)
+def test_cornell_bad_arguments(kwargs: dict, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        scenes.cornell_box(**kwargs)
+
+
+def test_cornell_caustics_glass_throws_a_caustic() -> None:
+    """The floor just in front of the glass sphere is far brighter with glass (ior 1.5) than
+    with an index-matched sphere (ior 1, which bends no light): the caustic."""
+    # Pixels (rows, columns) of the caustic at 32 x 32 (projected from a 256 x 256 render).
+    rows, cols = slice(28, 30), slice(20, 23)
+    values = {}
+    for ior in (1.5, 1.0):
+        scene = scenes.cornell_box((32, 32), variant="caustics", ior=ior)
+        image = dualight.render(scene, "path", spp=1024, max_depth=8, seed=3, progress=False)
+        green = np.asarray(image)[rows, cols, 1]
+        var = image.variance[rows, cols, 1]
+        values[ior] = (float(green.mean()), float(math.sqrt(var.sum()) / green.size))
+    (lens, e_lens), (flat, e_flat) = values[1.5], values[1.0]
+    assert lens > 2.0 * flat, values
+    assert lens - flat > 5.0 * math.hypot(e_lens, e_flat), values

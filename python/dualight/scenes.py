@@ -3,8 +3,12 @@
 * :func:`cornell_box`: the Cornell box from the Cornell Program of Computer Graphics'
   measured data (geometry and camera in millimetres), with the RGB reflectances and light
   radiance that Mitsuba 3's ``cornell_box()`` uses for the measured spectra.
+  ``variant="caustics"`` swaps the blocks for a mirror and a glass sphere.
 * :func:`furnace`: a closed cube with uniform reflectance and emission; every surface has the
   analytic radiance ``Le / (1 - rho)`` (:func:`furnace_radiance`).
+* :func:`rooms` and :func:`cube`: the test scenes of importance-driven radiosity.
+* :func:`door_ajar`: Veach's door, a room lit only through a door ajar (hard for path tracing).
+* :func:`icosphere`: a sphere mesh (subdivided icosahedron) for any scene.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from dualight.materials import Dielectric, Mirror
 from dualight.scene import Camera, Scene
 
 # Cornell box data, www.graphics.cornell.edu/online/box/data.html (quads, millimetres).
@@ -92,17 +97,77 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
     )
 
 
+#: Sphere centres and radius (mm) of ``cornell_box(variant="caustics")``: the mirror sphere
+#: at the back left (the red wall's side), the glass sphere at the front right; both rest on
+#: the floor, under the light's front and back edges.
+CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
+CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
+_CORNELL_SPHERE_SUBDIVISIONS = 5
+CORNELL_VARIANTS = ("classic", "caustics")
+
+
 def cornell_box(
     resolution: tuple[int, int] = (128, 128),
     *,
     light_scale: float = 1.0,
     reflectance_scale: float = 1.0,
+    variant: str = "classic",
+    ior: float = 1.5,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
-    ``light_scale`` and ``reflectance_scale`` multiply the light's radiance and every wall's
-    and block's reflectance; tests use them as negative controls.
+    Parameters
+    ----------
+    resolution : (int, int), optional
+        Image ``(width, height)``.
+    light_scale : float, optional
+        Multiplies the light's radiance, finite and ``>= 0``.
+    reflectance_scale : float, optional
+        Multiplies every wall's and block's reflectance (and the mirror's), finite, ``>= 0``
+        and small enough that every reflectance stays ``<= 1``. Tests use both scales as
+        negative controls.
+    variant : {"classic", "caustics"}, optional
+        ``"classic"``: the measured box with its two white blocks. ``"caustics"``: the same
+        room and light with the blocks replaced by two spheres resting on the floor (flat
+        :func:`icosphere` triangles, 5 subdivisions: 20,480 each), as in the classic caustic
+        scenes of pbrt and Mitsuba: ``mirror_sphere`` (a :class:`~dualight.Mirror` of
+        reflectance ``reflectance_scale``, radius 95 mm, centre (370, 95, 370): back left
+        in the image) and ``glass_sphere`` (a :class:`~dualight.Dielectric` of index
+        ``ior``, radius 95 mm, centre (180, 95, 165): front right). The glass sphere
+        focuses the light into a caustic on the floor beside it, towards the camera; the
+        mirror shows the room and the light.
+    ior : float, optional
+        The glass sphere's index of refraction (``"caustics"`` only; any value the
+        :class:`~dualight.Dielectric` accepts).
+
+    Returns
+    -------
+    Scene
+        Meshes ``floor``, ``ceiling``, ``back_wall``, ``green_wall``, ``red_wall``, then
+        ``short_block`` and ``tall_block`` (classic) or ``mirror_sphere`` and
+        ``glass_sphere`` (caustics), then ``light``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``variant``, a scale out of range, or (caustics) an invalid ``ior``.
     """
+    if variant not in CORNELL_VARIANTS:
+        raise ValueError(
+            f"cornell_box: unknown variant {variant!r}; choose one of {', '.join(CORNELL_VARIANTS)}"
+        )
+    light_scale = float(light_scale)
+    if not (math.isfinite(light_scale) and light_scale >= 0.0):
+        raise ValueError(f"cornell_box: light_scale must be finite and >= 0, got {light_scale!r}")
+    reflectance_scale = float(reflectance_scale)
+    largest = 1.0 if variant == "caustics" else max(CORNELL_WHITE)  # the mirror reflects 1
+    if not (math.isfinite(reflectance_scale) and 0.0 <= reflectance_scale <= 1.0 / largest):
+        raise ValueError(
+            f"cornell_box: reflectance_scale must be in [0, {1.0 / largest:.6g}] so every "
+            f"reflectance stays <= 1, got {reflectance_scale!r}"
+        )
+    glass = Dielectric(ior=ior) if variant == "caustics" else None
+
     scene = Scene(camera=cornell_camera(resolution))
     materials = {
         "floor": CORNELL_WHITE,
@@ -114,6 +179,8 @@ def cornell_box(
         "tall_block": CORNELL_WHITE,
     }
     for name, rho in materials.items():
+        if name.endswith("block") and variant == "caustics":
+            continue
         quads = [np.array(q, dtype=np.float64) for q in _CORNELL_QUADS[name]]
         if name.endswith("block"):
             centre = np.mean(np.concatenate(quads), axis=0)
@@ -122,6 +189,14 @@ def cornell_box(
             quads = [_orient(q, _CORNELL_ROOM_CENTRE, inward=True) for q in quads]
         v, f = _quads_mesh(quads)
         scene.add_mesh(v, f, reflectance=tuple(reflectance_scale * c for c in rho), name=name)
+    if glass is not None:
+        mirror = Mirror((reflectance_scale,) * 3)
+        for name, (centre, radius), material in (
+            ("mirror_sphere", CORNELL_MIRROR_SPHERE, mirror),
+            ("glass_sphere", CORNELL_GLASS_SPHERE, glass),
+        ):
+            v, f = icosphere(centre, radius, _CORNELL_SPHERE_SUBDIVISIONS)
+            scene.add_mesh(v, f, material=material, name=name)
     light = _orient(np.array(_CORNELL_LIGHT), _CORNELL_ROOM_CENTRE, inward=True)
     v, f = _quads_mesh([light])
     scene.add_mesh(
