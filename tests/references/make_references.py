@@ -26,6 +26,8 @@ The references (see README.md beside this file for how long they took):
   ``max_depth=8``, ``rr_depth=5``. Light reaches the camera's room only through the gap, so a
   path tracer needs many samples: each pixel's relative standard deviation of one sample is
   about 16 (median), hence the 524288 spp.
+* ``caustics_64``: ``cornell_box(resolution=(64, 64), variant="caustics")`` (the Cornell box
+  with a mirror and a glass sphere, ``ior=1.5``), ``max_depth=8``, ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -85,6 +87,13 @@ def _references() -> dict[str, Reference]:
             "door_ajar(resolution=(64, 64))",
             lambda: scenes.door_ajar(resolution=(64, 64)),
             spp=524288,
+            max_depth=8,
+        ),
+        Reference(
+            "caustics_64",
+            'cornell_box(resolution=(64, 64), variant="caustics")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="caustics"),
+            spp=262144,
             max_depth=8,
         ),
     ]
