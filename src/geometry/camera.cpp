@@ -22,6 +22,7 @@ PinholeCamera::PinholeCamera(const Vec3& origin, const Vec3& target, const Vec3&
   tan_half_x_ = std::tan(0.5f * fov_deg * kPi / 180.f);
   tan_half_y_ = tan_half_x_ * static_cast<float>(height) / static_cast<float>(width);
   inv_pixel_area_ = static_cast<float>(width) * static_cast<float>(height) / (4.f * tan_half_x_ * tan_half_y_);
+  inv_pixel_count_ = 1.f / (static_cast<float>(width) * static_cast<float>(height));
 }
 
 Ray PinholeCamera::generate_ray(float x, float y) const {
@@ -43,7 +44,7 @@ bool PinholeCamera::raster_position(const Vec3& p, Point2& xy) const {
   return xy.u >= 0.f && xy.u < static_cast<float>(width_) && xy.v >= 0.f && xy.v < static_cast<float>(height_);
 }
 
-float PinholeCamera::pdf_w(const Vec3& w) const {
+float PinholeCamera::importance(const Vec3& w) const {
   const float cos_theta = dot(w, forward_);
   if (!(cos_theta > 0.f)) return 0.f;
   const float sx = dot(w, right_) / (cos_theta * tan_half_x_), sy = dot(w, up_) / (cos_theta * tan_half_y_);

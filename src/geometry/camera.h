@@ -3,8 +3,10 @@
 //
 // Importance [Veach 1997, sec. 8.1.2; pbrt-v3 sec. 16.1.1]: a pixel's measurement is
 // I_j = integral of We_j(w) L(origin, -w) dw, and a camera ray through a uniformly jittered point of
-// pixel j has direction density p(w) = 1 / (A_pixel cos^3 theta) (A_pixel: the pixel's area on the
-// image plane at distance 1). So We_j = p inside pixel j: camera rays sample importance exactly.
+// pixel j has direction density 1 / (A_pixel cos^3 theta) (A_pixel: the pixel's area on the image
+// plane at distance 1). So We_j is that density inside pixel j: camera rays sample it exactly.
+// Densities for MIS are per film instead (1 / (A_film cos^3)): each pixel's camera samples compete
+// with light paths from the whole image, pixels x as many (pbrt's convention).
 #pragma once
 #include "core/ray.h"
 #include "core/sampling.h"
@@ -27,14 +29,18 @@ class PinholeCamera {
   // Film position (in pixels) where the ray from the origin to p crosses the film; false when p
   // is behind the camera or outside the field of view.
   bool raster_position(const Vec3& p, Point2& xy) const;
-  // Solid-angle density of generate_ray's direction w (unit) for a uniformly jittered film position
-  // in w's pixel; also the pixel's importance We_j(w). 0 outside the field of view.
-  float pdf_w(const Vec3& w) const;
+  // Importance We_j(w) of the pixel j that direction w (unit) falls in: the solid-angle density
+  // of camera rays through uniformly jittered points of that pixel. 0 outside the view.
+  float importance(const Vec3& w) const;
+  // Solid-angle density of a camera ray in direction w through a uniform point of the whole film:
+  // importance / pixel count. What MIS weights compare with light subpaths' densities.
+  float pdf_w(const Vec3& w) const { return importance(w) * inv_pixel_count_; }
 
  private:
   Vec3 origin_, forward_, right_, up_;
   float tan_half_x_, tan_half_y_;
   float inv_pixel_area_;  // 1 / (area of one pixel on the image plane at distance 1)
+  float inv_pixel_count_;
   int width_, height_;
 };
 

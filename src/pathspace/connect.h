@@ -36,7 +36,7 @@ inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, 
   const Vec3 w = d / std::sqrt(dist2);
   const Color f = qs.type == VertexType::Light ? emitted_towards(qs, camera.origin())
                                                : scattering(qs, camera.origin(), TransportMode::Importance);
-  const Color L = qs.beta * f * (camera.pdf_w(-w) * std::abs(dot(qs.n, w)) / dist2);
+  const Color L = qs.beta * f * (camera.importance(-w) * std::abs(dot(qs.n, w)) / dist2);
   if (is_black(L)) {
     ++counters.skipped_connections;
     return L;

@@ -58,11 +58,13 @@ TEST_CASE(camera_importance_integrates_to_one_per_pixel) {
       const Vec3 d10 = kCamera.generate_ray(x + 0.5f / n, y - 0.5f / n).d;
       // Solid angle of the little cell: two spherical triangles, approximated by flat ones.
       const double omega = 0.5 * (length(cross(d10 - d00, d01 - d00)) + length(cross(d10 - d11, d01 - d11)));
-      integral += kCamera.pdf_w(kCamera.generate_ray(x, y).d) * omega;
+      integral += kCamera.importance(kCamera.generate_ray(x, y).d) * omega;
     }
   }
   CHECK_NEAR(integral, 1.0, 1e-3);
-  CHECK(kCamera.pdf_w(Vec3(0, 0, -1)) == 0.f);
+  CHECK(kCamera.importance(Vec3(0, 0, -1)) == 0.f);
+  const Vec3 w = kCamera.generate_ray(3.f, 4.f).d;
+  CHECK_NEAR(kCamera.pdf_w(w) * 32.f * 24.f / kCamera.importance(w), 1.f, 1e-5f);
 }
 
 TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
