@@ -99,7 +99,7 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
 
 #: Sphere centres and radius (mm) of ``cornell_box(variant="caustics")``: the mirror sphere
 #: at the back left (the red wall's side), the glass sphere at the front right; both rest on
-#: the floor, under the light's front and back edges.
+#: the floor, diagonally either side of the point under the light's centre.
 CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
 CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
 _CORNELL_SPHERE_SUBDIVISIONS = 5
