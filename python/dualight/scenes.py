@@ -686,13 +686,11 @@ def _door_leaf(opening: float) -> tuple[np.ndarray, np.ndarray]:
         return p
 
     c = {(i, j, k): corner(i, j, k) for i in (0, 1) for j in (0, 1) for k in (0, 1)}
-    quads = [
-        np.array([c[0, j, 0], c[1, j, 0], c[1, j, 1], c[0, j, 1]]) for j in (0, 1)
-    ] + [
-        np.array([c[i, 0, 0], c[i, 1, 0], c[i, 1, 1], c[i, 0, 1]]) for i in (0, 1)
-    ] + [
-        np.array([c[0, 0, k], c[1, 0, k], c[1, 1, k], c[0, 1, k]]) for k in (0, 1)
-    ]
+    quads = (
+        [np.array([c[0, j, 0], c[1, j, 0], c[1, j, 1], c[0, j, 1]]) for j in (0, 1)]
+        + [np.array([c[i, 0, 0], c[i, 1, 0], c[i, 1, 1], c[i, 0, 1]]) for i in (0, 1)]
+        + [np.array([c[0, 0, k], c[1, 0, k], c[1, 1, k], c[0, 1, k]]) for k in (0, 1)]
+    )
     centre = np.mean(list(c.values()), axis=0)
     return _quads_mesh([_orient(q, centre, inward=False) for q in quads])
 
