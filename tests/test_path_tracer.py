@@ -110,7 +110,8 @@ def test_progress_callback_reports_and_its_errors_propagate() -> None:
         dualight.render(scene, spp=100000, progress=broken)
 
 
-def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image() -> None:
+@pytest.mark.parametrize("method", dualight.METHODS)
+def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image(method: str) -> None:
     scene = scenes.cornell_box(resolution=(64, 64))
     sent: list[float] = []
 
@@ -121,7 +122,7 @@ def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image() -> None
     timer = threading.Timer(0.4, interrupt)
     timer.start()
     with pytest.raises(KeyboardInterrupt) as info:
-        dualight.render(scene, spp=1_000_000, time_limit=20.0, progress=False)
+        dualight.render(scene, method, spp=1_000_000, time_limit=20.0, progress=False)
     latency = time.perf_counter() - sent[0]
     timer.join()
     assert latency < 0.5, f"took {latency:.3f} s to stop"

@@ -67,7 +67,7 @@ void bind_pathspace(py::module_& m) {
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler) {
              check_common(spp, max_depth, rr_depth, threads, time_limit);
-             return PathTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit, sampler};
+             return PathTracerOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}};
            }),
            py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
@@ -102,7 +102,7 @@ void bind_pathspace(py::module_& m) {
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler) {
              check_common(spp, max_depth, rr_depth, threads, time_limit);
-             return LightTracerOptions{spp, max_depth, rr_depth, seed, threads, time_limit, sampler};
+             return LightTracerOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}};
            }),
            py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
@@ -115,8 +115,8 @@ void bind_pathspace(py::module_& m) {
              if (strategy_images && max_depth < 0) {
                throw py::value_error("strategy_images needs a bounded max_depth (>= 1)");
              }
-             return BdptOptions{spp,        max_depth, rr_depth,  seed,           threads,
-                                time_limit, sampler,   heuristic, strategy_images};
+             return BdptOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}, heuristic,
+                                strategy_images};
            }),
            py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,

@@ -127,4 +127,15 @@ class SobolSampler {
   uint32_t dimension_ = 0;
 };
 
+// Calls f(SamplerTag<S>{}) with the sampler class S that `type` names, so that estimators are
+// compiled once per sampler and chosen at run time in one place.
+template <class S>
+struct SamplerTag {
+  using type = S;
+};
+template <class F>
+auto with_sampler(SamplerType type, F&& f) {
+  return type == SamplerType::Sobol ? f(SamplerTag<SobolSampler>{}) : f(SamplerTag<IndependentSampler>{});
+}
+
 }  // namespace dualight

@@ -78,14 +78,9 @@ RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const 
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList& splats) {
     return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, result.film);
   };
-  switch (options.sampler) {
-    case SamplerType::Independent:
-      result.stats = drive_pixels<IndependentSampler>(result.film, driver, control, estimate);
-      break;
-    case SamplerType::Sobol:
-      result.stats = drive_pixels<SobolSampler>(result.film, driver, control, estimate);
-      break;
-  }
+  result.stats = with_sampler(options.sampler, [&](auto tag) {
+    return drive_pixels<typename decltype(tag)::type>(result.film, driver, control, estimate);
+  });
   return result;
 }
 

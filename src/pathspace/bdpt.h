@@ -16,18 +16,12 @@
 #include "geometry/camera.h"
 #include "geometry/scene.h"
 #include "pathspace/mis_weight.h"
+#include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
 
-struct BdptOptions {
-  uint32_t spp = 64;  // 0 = unbounded (then time_limit must be set)
-  int max_depth = -1;
-  int rr_depth = 5;
-  uint64_t seed = 0;
-  int threads = 0;
-  double time_limit = 0.0;
-  SamplerType sampler = SamplerType::Independent;
+struct BdptOptions : EstimatorOptions {
   MisHeuristic heuristic = MisHeuristic::Power;
   // One extra film layer per strategy holding its MIS-weighted contributions, which sum to the
   // image (needs a bounded max_depth).

@@ -64,14 +64,7 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   if (s == 1) {
     const float u_select = sampler.next_1d();
     const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
-    sampled = Vertex{};
-    sampled.type = VertexType::Light;
-    sampled.p = es.p;
-    sampled.n = es.n;
-    sampled.prim = es.prim;
-    sampled.material = &scene.material(es.prim);
-    sampled.beta = Color(1.f / es.pdf_a);
-    sampled.pdf_fwd = es.pdf_a;
+    sampled = emitter_vertex(scene, es);
   }
   const Vertex& qs = s == 1 ? sampled : light[s - 1];
   if (!qs.connectible()) {

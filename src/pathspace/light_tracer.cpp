@@ -107,14 +107,9 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                           RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  switch (options.sampler) {
-    case SamplerType::Independent:
-      result.stats = drive_particles<IndependentSampler>(scene, camera, options, result.film, control);
-      break;
-    case SamplerType::Sobol:
-      result.stats = drive_particles<SobolSampler>(scene, camera, options, result.film, control);
-      break;
-  }
+  result.stats = with_sampler(options.sampler, [&](auto tag) {
+    return drive_particles<typename decltype(tag)::type>(scene, camera, options, result.film, control);
+  });
   return result;
 }
 

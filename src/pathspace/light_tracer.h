@@ -11,19 +11,12 @@
 #include "core/sampler.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
 
-struct LightTracerOptions {
-  uint32_t spp = 64;  // particles per pixel; 0 = unbounded (then time_limit must be set)
-  int max_depth = -1;
-  int rr_depth = 5;
-  uint64_t seed = 0;
-  int threads = 0;
-  double time_limit = 0.0;
-  SamplerType sampler = SamplerType::Independent;
-};
+struct LightTracerOptions : EstimatorOptions {};  // spp counts particles per pixel
 
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                           RenderControl& control);

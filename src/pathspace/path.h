@@ -39,6 +39,19 @@ struct Vertex {
 
 using Path = std::vector<Vertex>;
 
+// The start of a light subpath (or the emitter end of a connection) at an emitter sample.
+inline Vertex emitter_vertex(const Scene& scene, const EmitterSample& es) {
+  Vertex v;
+  v.type = VertexType::Light;
+  v.p = es.p;
+  v.n = es.n;
+  v.prim = es.prim;
+  v.material = &scene.material(es.prim);
+  v.beta = Color(1.f / es.pdf_a);
+  v.pdf_fwd = es.pdf_a;
+  return v;
+}
+
 // Area density at `to` of a solid-angle density at `from` towards `to`.
 inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& to) {
   const Vec3 d = to.p - from.p;

@@ -99,14 +99,9 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
     return trace_path(scene, camera.generate_ray(x, y), options, sampler, counters);
   };
-  switch (options.sampler) {
-    case SamplerType::Independent:
-      result.stats = drive_pixels<IndependentSampler>(result.film, driver, control, estimate);
-      break;
-    case SamplerType::Sobol:
-      result.stats = drive_pixels<SobolSampler>(result.film, driver, control, estimate);
-      break;
-  }
+  result.stats = with_sampler(options.sampler, [&](auto tag) {
+    return drive_pixels<typename decltype(tag)::type>(result.film, driver, control, estimate);
+  });
   return result;
 }
 

@@ -10,19 +10,12 @@
 #include "film/film.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
 
-struct PathTracerOptions {
-  uint32_t spp = 64;          // 0 = unbounded (then time_limit must be set)
-  int max_depth = -1;
-  int rr_depth = 5;
-  uint64_t seed = 0;
-  int threads = 0;            // 0 = all cores
-  double time_limit = 0.0;    // seconds; 0 = none
-  SamplerType sampler = SamplerType::Independent;
-};
+struct PathTracerOptions : EstimatorOptions {};
 
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                          RenderControl& control);

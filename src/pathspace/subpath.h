@@ -105,15 +105,7 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   if (max_vertices == 0) return;
   const float u_select = sampler.next_1d();
   const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
-  Vertex l;
-  l.type = VertexType::Light;
-  l.p = es.p;
-  l.n = es.n;
-  l.prim = es.prim;
-  l.material = &scene.material(es.prim);
-  l.beta = Color(1.f / es.pdf_a);
-  l.pdf_fwd = es.pdf_a;
-  path.push_back(l);
+  path.push_back(emitter_vertex(scene, es));
   const Vec3 local = square_to_cosine_hemisphere(sampler.next_2d());
   const float pdf_dir = cosine_hemisphere_pdf(local.z);
   if (!(pdf_dir > 0.f)) return;

@@ -1,0 +1,19 @@
+// What every image estimator is told: its budget, path lengths, seed, threads and sampler.
+#pragma once
+#include <cstdint>
+
+#include "core/sampler.h"
+
+namespace dualight {
+
+struct EstimatorOptions {
+  uint32_t spp = 64;        // samples (or particles) per pixel; 0 = unbounded, then time_limit must be set
+  int max_depth = -1;       // segments, as in Mitsuba; -1 = unbounded
+  int rr_depth = 5;         // Russian roulette from this vertex on
+  uint64_t seed = 0;
+  int threads = 0;          // 0 = all cores
+  double time_limit = 0.0;  // seconds; 0 = none
+  SamplerType sampler = SamplerType::Independent;
+};
+
+}  // namespace dualight
