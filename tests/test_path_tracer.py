@@ -110,7 +110,17 @@ def test_progress_callback_reports_and_its_errors_propagate() -> None:
         dualight.render(scene, spp=100000, progress=broken)
 
 
+@pytest.fixture
+def ctrl_c_raises():
+    """Python's own SIGINT handler for the test: a process started in the background by a
+    non-interactive shell inherits SIGINT as ignored, and then Ctrl-C never arrives."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 @pytest.mark.parametrize("method", dualight.METHODS)
+@pytest.mark.usefixtures("ctrl_c_raises")
 def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image(method: str) -> None:
     scene = scenes.cornell_box(resolution=(64, 64))
     sent: list[float] = []
