@@ -1,0 +1,61 @@
+// One BDPT sample: a camera subpath through film position (x, y), a light subpath, and every
+// strategy joining them, MIS-weighted [Veach 1997, ch. 10]. Returns the contributions to the
+// pixel at (x, y) (strategies with t >= 2); light-tracing strategies (t = 1) go to `splats`.
+// Shared by BDPT (independent or Sobol samplers) and primary-sample-space MLT (Kelemen's
+// sampler): all of its randomness comes from `sampler`.
+#pragma once
+#include "film/film.h"
+#include "film/splat_list.h"
+#include "pathspace/bdpt.h"
+#include "pathspace/connect.h"
+#include "pathspace/subpath.h"
+
+namespace dualight {
+
+// Layer of strategy (s, t): depth d = s + t - 1 has d + 1 strategies (t = 1 .. d + 1).
+inline size_t strategy_layer(int s, int t) {
+  const int d = s + t - 1;
+  return static_cast<size_t>((d - 1) * (d + 2) / 2 + (t - 1));
+}
+
+struct Subpaths {
+  Path camera, light;
+};
+
+// `layers`: the film whose strategy layers receive the own-pixel contributions (only when
+// opt.strategy_images), else unused.
+template <class Sampler>
+Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
+                  Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers) {
+  const WalkLimits limits{opt.max_depth, opt.rr_depth};
+  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
+  light_subpath(scene, sampler, limits, paths.light, counters);
+  const Path& cam = paths.camera;
+  const Path& light = paths.light;
+  const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
+
+  Color L(0.f);
+  for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
+    for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
+      const int depth = s + t - 1;
+      if (depth < 1 || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
+      if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
+      Vertex sampled;
+      Point2 raster{};
+      Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
+      if (is_black(c)) continue;
+      c *= mis_weight(scene, camera, light, cam, sampled, s, t, opt.heuristic);
+      if (t == 1) {
+        const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u);
+        splats.add(target, c);
+        if (opt.strategy_images) splats.add(target, c, static_cast<uint32_t>(strategy_layer(s, t) + 1));
+      } else {
+        L += c;
+        if (opt.strategy_images && is_finite(c)) layers->add_layer_sample(strategy_layer(s, t), pixel, c);
+      }
+    }
+  }
+  return L;
+}
+
+}  // namespace dualight
