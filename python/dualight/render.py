@@ -9,7 +9,7 @@ from typing import Any
 from dualight.image import Image
 from dualight.scene import Camera, Scene
 
-METHODS = ("path", "light", "bdpt")
+METHODS = ("path", "light", "bdpt", "pssmlt")
 SAMPLERS = ("independent", "sobol")
 HEURISTICS = ("power", "balance")
 
@@ -59,6 +59,7 @@ def render(
     sampler: str = "independent",
     heuristic: str = "power",
     strategy_images: bool = False,
+    mutations_per_pixel: int | None = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -71,6 +72,10 @@ def render(
         Mitsuba's ``ptracer``. Surfaces seen only through a mirror or glass next to the camera
         (specular-to-camera paths) stay dark: no particle can reach the pinhole through them.
         ``"bdpt"``: bidirectional path tracing, every (s, t) strategy combined by MIS.
+        ``"pssmlt"``: primary-sample-space Metropolis light transport over BDPT (Kelemen et
+        al. 2002); its budget is ``mutations_per_pixel`` (or ``spp``) and/or ``time_limit``.
+        Its pixels are correlated, so ``image.variance`` is ``None``; ``image.stats`` has the
+        normalisation ``b`` with its 95 % interval ``b_ci95`` and the acceptance rates.
     spp:
         Samples per pixel (particles per pixel for ``"light"``). ``None`` renders until
         ``time_limit``. With both, whichever ends first stops the render (at a whole pass, so
@@ -135,10 +140,17 @@ def render(
         threads = min(threads, os.cpu_count() or threads)
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(SAMPLERS)}")
+    if mutations_per_pixel is not None:
+        if method != "pssmlt":
+            raise ValueError("mutations_per_pixel applies to method='pssmlt' only")
+        _check_int("mutations_per_pixel", mutations_per_pixel, 1)
+        spp = mutations_per_pixel
     if heuristic not in HEURISTICS:
         raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
-    if method != "bdpt" and (heuristic != "power" or strategy_images):
-        raise ValueError("heuristic and strategy_images apply to method='bdpt' only")
+    if method not in ("bdpt", "pssmlt") and heuristic != "power":
+        raise ValueError("heuristic applies to method='bdpt' or 'pssmlt' only")
+    if method != "bdpt" and strategy_images:
+        raise ValueError("strategy_images applies to method='bdpt' only")
     if strategy_images and max_depth < 1:
         raise ValueError("strategy_images needs a bounded max_depth >= 1")
     if camera is not None and not isinstance(camera, Camera):
@@ -162,6 +174,13 @@ def render(
         run, options = _core.render_path, _core.PathTracerOptions(**common)
     elif method == "light":
         run, options = _core.render_light, _core.LightTracerOptions(**common)
+    elif method == "pssmlt":
+        common["mutations_per_pixel"] = common.pop("spp")
+        common.pop("sampler")
+        run, options = (
+            _core.render_pssmlt,
+            _core.PssmltOptions(**common, heuristic=getattr(_core.MisHeuristic, heuristic)),
+        )
     else:
         run, options = (
             _core.render_bdpt,

@@ -8,6 +8,7 @@
 #include "pathspace/bdpt.h"
 #include "pathspace/light_tracer.h"
 #include "pathspace/path_tracer.h"
+#include "pathspace/pssmlt.h"
 #include "pathspace/ray_benchmark.h"
 #include "pathspace/subpath.h"
 
@@ -161,6 +162,71 @@ void bind_pathspace(py::module_& m) {
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, "
       "keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.");
+
+  py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
+      .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
+                       double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
+                       float large_step_probability, MisHeuristic heuristic) {
+             check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
+             if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
+             if (chains < 1) throw py::value_error("chains must be >= 1");
+             if (!(sigma > 0.f && sigma < 1.f)) throw py::value_error("sigma must be in (0, 1)");
+             if (!(large_step_probability >= 0.f && large_step_probability <= 1.f)) {
+               throw py::value_error("large_step_probability must be in [0, 1]");
+             }
+             PssmltOptions o;
+             static_cast<EstimatorOptions&>(o) = {mutations_per_pixel, max_depth, rr_depth, seed, threads,
+                                                  time_limit, SamplerType::Independent};
+             o.bootstrap = bootstrap;
+             o.chains = chains;
+             o.sigma = sigma;
+             o.large_step_probability = large_step_probability;
+             o.heuristic = heuristic;
+             return o;
+           }),
+           py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
+           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
+           py::arg("chains") = 256, py::arg("sigma") = 0.01f, py::arg("large_step_probability") = 0.3f,
+           py::arg("heuristic") = MisHeuristic::Power);
+
+  m.def(
+      "render_pssmlt",
+      [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const PssmltOptions& options,
+         const py::object& progress) {
+        check_emitters(*scene);
+        RenderControl control;
+        auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
+                                     progress);
+        const MltStats s = run.result.mlt;
+        py::dict d = result_dict(std::move(run.result.render), run.keyboard_interrupt);
+        d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
+        if (s.b_splatted > 0.0) {  // rescale to the final estimate of b
+          auto mean = d["mean"].cast<py::array_t<float>>();
+          auto m = mean.mutable_unchecked<3>();
+          const float k = static_cast<float>(s.b / s.b_splatted);
+          for (py::ssize_t i = 0; i < m.shape(0); ++i)
+            for (py::ssize_t j = 0; j < m.shape(1); ++j)
+              for (py::ssize_t c = 0; c < 3; ++c) m(i, j, c) *= k;
+        }
+        py::dict stats = d["stats"];
+        stats["b"] = s.b;
+        stats["b_ci95"] = s.b_ci95;
+        stats["b_samples"] = s.independent_samples;
+        stats["mutations"] = s.mutations;
+        stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
+        stats["large_steps"] = s.large_steps;
+        stats["large_step_acceptance_rate"] =
+            s.large_steps > 0 ? static_cast<double>(s.large_steps_accepted) / s.large_steps : 0.0;
+        stats["small_step_acceptance_rate"] =
+            s.mutations > s.large_steps
+                ? static_cast<double>(s.accepted - s.large_steps_accepted) / (s.mutations - s.large_steps)
+                : 0.0;
+        stats["zero_proposals"] = s.zero_proposals;
+        return d;
+      },
+      py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      "Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, counts, light_paths, stats, "
+      "keyboard_interrupt); stats has b, b_ci95, mutations and acceptance rates.");
 
   m.def(
       "verify_random_subpaths",

@@ -1,0 +1,49 @@
+// Primary-sample-space Metropolis light transport [Kelemen et al. 2002] over BDPT: the random
+// numbers of one BDPT sample (film position included) are the state of a Markov chain whose
+// stationary density is proportional to f = the luminance of everything the sample contributes,
+// over the whole film. Mutations are Kelemen's small steps (normal, deviation sigma, per number)
+// and large steps (fresh numbers). Start-up bias is avoided as in Veach's thesis (sec. 11.3.1) and
+// pbrt-v3: `bootstrap` independent samples estimate the normalisation b = E[f] and the chains
+// start from states resampled in proportion to f. Every mutation splats both the current and
+// the proposed state, weighted by their acceptance probabilities (expected values), times b / M
+// for M mutations in all. Use it where paths are hard to find but, once found, have neighbours
+// that are found by small steps: caustics, light through gaps.
+#pragma once
+#include <cstdint>
+
+#include "core/render_control.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/estimator_options.h"
+#include "pathspace/mis_weight.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampler is unused
+  uint32_t bootstrap = 100000;
+  uint32_t chains = 256;
+  float sigma = 0.01f;
+  float large_step_probability = 0.3f;
+  MisHeuristic heuristic = MisHeuristic::Power;
+};
+
+struct MltStats {
+  // Normalisation E[f] and the half-width of its 95 % interval, from the bootstrap samples and
+  // every large step (independent samples too, Kelemen et al.); the image is scaled by it at the
+  // end (`b_splatted` is the bootstrap estimate the splats were made with).
+  double b = 0.0, b_ci95 = 0.0, b_splatted = 0.0;
+  uint64_t independent_samples = 0;
+  uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0;
+  uint64_t zero_proposals = 0;  // proposals with f = 0 (rejected)
+};
+
+struct MltResult {
+  RenderResult render;
+  MltStats mlt;
+};
+
+MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,
+                        RenderControl& control);
+
+}  // namespace dualight

@@ -1,0 +1,110 @@
+"""Primary-sample-space MLT (Kelemen et al. 2002) over BDPT, against the Mitsuba Cornell
+reference. MLT pixels are correlated (a chain splats into many pixels) and its brightness is
+set by one estimate b, so it is tested on block means with variances from independent runs."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dualight
+from dualight import metrics, scenes
+
+REFERENCES = Path(__file__).parent / "references"
+RUNS, MPP, BLOCK = 12, 24, 8
+ALPHA = 0.01
+
+
+def _t_critical(dof: int, alpha_per_test: float) -> float:
+    """Two-sided Student-t critical value (numerical integration of the density; no SciPy)."""
+    t = np.linspace(0.0, 400.0, 2_000_001)
+    log_c = math.lgamma((dof + 1) / 2) - math.lgamma(dof / 2) - 0.5 * math.log(dof * math.pi)
+    pdf = np.exp(log_c - (dof + 1) / 2 * np.log1p(t * t / dof))
+    tail = 2.0 * (
+        np.trapezoid(pdf, t)
+        - np.concatenate([[0.0], np.cumsum((pdf[1:] + pdf[:-1]) / 2 * np.diff(t))])
+    )
+    return float(t[np.argmax(tail < alpha_per_test)])
+
+
+def _reference() -> tuple[np.ndarray, np.ndarray]:
+    mean = dualight.Image.load(REFERENCES / "cornell_64_mean.exr")
+    var = dualight.Image.load(REFERENCES / "cornell_64_var.exr")
+    return np.asarray(mean), np.asarray(var)
+
+
+def _runs(**scene_kw) -> list[dualight.Image]:
+    scene = scenes.cornell_box(resolution=(64, 64), **scene_kw)
+    return [
+        dualight.render(
+            scene, "pssmlt", mutations_per_pixel=MPP, max_depth=8, seed=100 + i, progress=False
+        )
+        for i in range(RUNS)
+    ]
+
+
+def _block_test(runs: list[dualight.Image]) -> tuple[float, float, float]:
+    """t-test of the runs' block means against the reference's, the runs' variance measured
+    from their spread (so correlation between pixels and the error of b count), with
+    Student's t for len(runs) - 1 degrees of freedom (the reference's own variance is 50x
+    smaller) and a Sidak-corrected level over blocks and channels.
+    Returns (fraction of blocks passing, largest |t|, critical value)."""
+    ref, ref_var = _reference()
+    blocks = np.array([metrics.block_mean(np.asarray(r), BLOCK) for r in runs])
+    mean = blocks.mean(axis=0)
+    var_of_mean = blocks.var(axis=0, ddof=1) / len(runs)
+    ref_blocks = metrics.block_mean(ref, BLOCK)
+    ref_block_var = metrics.block_mean(ref_var, BLOCK) / BLOCK**2
+    t = np.abs(mean - ref_blocks) / np.sqrt(var_of_mean + ref_block_var)
+    alpha_per_test = -math.expm1(math.log1p(-ALPHA) / t.size)
+    critical = _t_critical(len(runs) - 1, alpha_per_test)
+    passed = np.all(t < critical, axis=2)
+    return float(passed.mean()), float(t.max()), critical
+
+
+@pytest.fixture(scope="module")
+def cornell_runs() -> list[dualight.Image]:
+    return _runs()
+
+
+def test_block_means_match_mitsuba_and_a_dimmer_light_fails(cornell_runs) -> None:
+    passed, t_max, critical = _block_test(cornell_runs)
+    print(
+        f"\npssmlt {RUNS} runs x {MPP} mutations/pixel, {BLOCK}x{BLOCK} blocks: "
+        f"{100 * passed:.2f}% pass, max |t| {t_max:.2f} vs t* {critical:.2f}"
+    )
+    assert passed >= 0.9975
+    wrong, t_wrong, _ = _block_test(_runs(light_scale=0.9))
+    print(f"light x0.9: {100 * wrong:.2f}% pass, max |t| {t_wrong:.2f}")
+    assert wrong < 0.9975
+
+
+def test_brightness_agrees_with_the_reference_within_b_interval(cornell_runs) -> None:
+    ref, _ = _reference()
+    ratios = np.array([float(np.mean(r)) / float(ref.mean()) for r in cornell_runs])
+    rel_sigma = np.array([r.stats["b_ci95"] / 1.96 / r.stats["b"] for r in cornell_runs])
+    print(
+        f"\nimage mean / reference over {RUNS} seeds: {np.round(ratios, 4)}, b rel. sd {rel_sigma}"
+    )
+    # Each image's brightness is b's estimate: within 4 of its standard errors.
+    assert np.all(np.abs(ratios - 1.0) < 4.0 * rel_sigma)
+    # The seeds' mean brightness, within 4 standard errors of the mean.
+    assert abs(ratios.mean() - 1.0) < 4.0 * rel_sigma.mean() / np.sqrt(RUNS)
+
+
+def test_stats_and_options(cornell_runs) -> None:
+    s = cornell_runs[0].stats
+    assert cornell_runs[0].variance is None
+    assert s["method"] == "pssmlt" and s["mutations"] == 64 * 64 * MPP
+    assert 0.0 < s["large_step_acceptance_rate"] < s["small_step_acceptance_rate"] < 1.0
+    assert s["b"] > 0 and 0 < s["b_ci95"] < 0.1 * s["b"]
+    assert s["b_samples"] > 100000 and s["invalid_samples"] == 0
+    scene = scenes.cornell_box(resolution=(16, 16))
+    one = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=1, progress=False)
+    two = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=2, progress=False)
+    np.testing.assert_array_equal(np.asarray(one), np.asarray(two))
+    with pytest.raises(ValueError, match="pssmlt"):
+        dualight.render(scene, "bdpt", mutations_per_pixel=4, progress=False)
