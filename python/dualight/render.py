@@ -60,6 +60,7 @@ def render(
     heuristic: str = "power",
     strategy_images: bool = False,
     mutations_per_pixel: int | None = None,
+    mlt: dict[str, Any] | None = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -74,8 +75,10 @@ def render(
         ``"bdpt"``: bidirectional path tracing, every (s, t) strategy combined by MIS.
         ``"pssmlt"``: primary-sample-space Metropolis light transport over BDPT (Kelemen et
         al. 2002); its budget is ``mutations_per_pixel`` (or ``spp``) and/or ``time_limit``.
-        Its pixels are correlated, so ``image.variance`` is ``None``; ``image.stats`` has the
-        normalisation ``b`` with its 95 % interval ``b_ci95`` and the acceptance rates.
+        Emitters seen directly and direct lighting (paths of 1 and 2 segments) are rendered
+        apart by BDPT (``direct_spp``, default 128) and left out of the chains. Its pixels are
+        correlated, so ``image.variance`` is ``None``; ``image.stats`` has the normalisation
+        ``b`` with its 95 % interval ``b_ci95`` and the acceptance rates.
     spp:
         Samples per pixel (particles per pixel for ``"light"``). ``None`` renders until
         ``time_limit``. With both, whichever ends first stops the render (at a whole pass, so
@@ -103,6 +106,11 @@ def render(
         error, so use independent sampling for statistical tests).
     heuristic:
         BDPT's MIS heuristic: ``"power"`` (exponent 2, the default) or ``"balance"``.
+    mlt:
+        ``"pssmlt"`` only: keyword options of ``dualight._core.PssmltOptions``: ``bootstrap``
+        (100000 independent samples for b and the chains' starts), ``chains`` (256),
+        ``sigma`` (0.01, small-step deviation), ``large_step_probability`` (0.3),
+        ``direct_spp`` (128; 0 keeps direct light in the chains).
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
@@ -145,6 +153,8 @@ def render(
             raise ValueError("mutations_per_pixel applies to method='pssmlt' only")
         _check_int("mutations_per_pixel", mutations_per_pixel, 1)
         spp = mutations_per_pixel
+    if mlt is not None and method != "pssmlt":
+        raise ValueError("mlt options apply to method='pssmlt' only")
     if heuristic not in HEURISTICS:
         raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
     if method not in ("bdpt", "pssmlt") and heuristic != "power":
@@ -179,7 +189,9 @@ def render(
         common.pop("sampler")
         run, options = (
             _core.render_pssmlt,
-            _core.PssmltOptions(**common, heuristic=getattr(_core.MisHeuristic, heuristic)),
+            _core.PssmltOptions(
+                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
+            ),
         )
     else:
         run, options = (

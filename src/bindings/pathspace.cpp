@@ -166,7 +166,7 @@ void bind_pathspace(py::module_& m) {
   py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
       .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
                        double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
-                       float large_step_probability, MisHeuristic heuristic) {
+                       float large_step_probability, MisHeuristic heuristic, uint32_t direct_spp) {
              check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
              if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
              if (chains < 1) throw py::value_error("chains must be >= 1");
@@ -182,12 +182,13 @@ void bind_pathspace(py::module_& m) {
              o.sigma = sigma;
              o.large_step_probability = large_step_probability;
              o.heuristic = heuristic;
+             o.direct_spp = direct_spp;
              return o;
            }),
            py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
            py::arg("chains") = 256, py::arg("sigma") = 0.01f, py::arg("large_step_probability") = 0.3f,
-           py::arg("heuristic") = MisHeuristic::Power);
+           py::arg("heuristic") = MisHeuristic::Power, py::arg("direct_spp") = 128);
 
   m.def(
       "render_pssmlt",
@@ -198,6 +199,8 @@ void bind_pathspace(py::module_& m) {
         auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
                                      progress);
         const MltStats s = run.result.mlt;
+        const std::vector<float> direct = run.result.direct.film.mean();
+        const RenderStats direct_stats = run.result.direct.stats;
         py::dict d = result_dict(std::move(run.result.render), run.keyboard_interrupt);
         d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
         if (s.b_splatted > 0.0) {  // rescale to the final estimate of b
@@ -207,6 +210,13 @@ void bind_pathspace(py::module_& m) {
           for (py::ssize_t i = 0; i < m.shape(0); ++i)
             for (py::ssize_t j = 0; j < m.shape(1); ++j)
               for (py::ssize_t c = 0; c < 3; ++c) m(i, j, c) *= k;
+        }
+        if (options.direct_spp > 0) {  // add the separately rendered direct light
+          auto mean = d["mean"].cast<py::array_t<float>>();
+          auto m = mean.mutable_unchecked<3>();
+          for (py::ssize_t i = 0; i < m.shape(0); ++i)
+            for (py::ssize_t j = 0; j < m.shape(1); ++j)
+              for (py::ssize_t c = 0; c < 3; ++c) m(i, j, c) += direct[(i * m.shape(1) + j) * 3 + c];
         }
         py::dict stats = d["stats"];
         stats["b"] = s.b;
@@ -222,6 +232,9 @@ void bind_pathspace(py::module_& m) {
                 ? static_cast<double>(s.accepted - s.large_steps_accepted) / (s.mutations - s.large_steps)
                 : 0.0;
         stats["zero_proposals"] = s.zero_proposals;
+        stats["direct_spp"] = options.direct_spp;
+        stats["direct_seconds"] = direct_stats.seconds;
+        stats["rays"] = stats["rays"].cast<uint64_t>() + direct_stats.rays;
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),

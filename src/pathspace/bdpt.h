@@ -26,6 +26,8 @@ struct BdptOptions : EstimatorOptions {
   // One extra film layer per strategy holding its MIS-weighted contributions, which sum to the
   // image (needs a bounded max_depth).
   bool strategy_images = false;
+  // Paths of fewer segments are left out (MLT renders direct light separately with them).
+  int min_depth = 1;
 };
 
 // The strategies of paths with 1..max_depth segments, in layer order: by depth, then by t.

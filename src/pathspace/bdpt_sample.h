@@ -38,7 +38,7 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
     for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
       const int depth = s + t - 1;
-      if (depth < 1 || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
+      if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
       if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
       Vertex sampled;
       Point2 raster{};

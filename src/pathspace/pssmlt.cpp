@@ -35,6 +35,7 @@ class Evaluator {
     bdpt_.max_depth = opt.max_depth;
     bdpt_.rr_depth = opt.rr_depth;
     bdpt_.heuristic = opt.heuristic;
+    bdpt_.min_depth = opt.direct_spp > 0 ? 3 : 1;
   }
 
   void operator()(PrimarySampleSampler& sampler, Contribution& out, TraceCounters& counters) {
@@ -73,7 +74,22 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  MltResult result{{Film(camera.width(), camera.height()), {}}, {}};
+  MltResult result{{Film(camera.width(), camera.height()), {}}, {Film(camera.width(), camera.height()), {}}, {}};
+  if (opt.direct_spp > 0) {
+    BdptOptions direct;
+    static_cast<EstimatorOptions&>(direct) = opt;
+    direct.spp = opt.direct_spp;
+    direct.time_limit = 0.0;
+    direct.max_depth = opt.max_depth < 0 ? 2 : std::min(opt.max_depth, 2);
+    direct.heuristic = opt.heuristic;
+    direct.seed = hash_combine(opt.seed, 0xd1ec7ull);
+    result.direct = render_bdpt(scene, camera, direct, control);
+    control.done.store(0);
+    if (control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2)) {
+      result.render.stats = result.direct.stats;
+      return result;
+    }
+  }
   MltStats& mlt = result.mlt;
   const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
   std::atomic<uint64_t> rays{0};

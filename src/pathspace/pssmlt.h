@@ -15,6 +15,7 @@
 #include "geometry/camera.h"
 #include "geometry/scene.h"
 #include "pathspace/estimator_options.h"
+#include "pathspace/bdpt.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/render_stats.h"
 
@@ -26,6 +27,11 @@ struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sa
   float sigma = 0.01f;
   float large_step_probability = 0.3f;
   MisHeuristic heuristic = MisHeuristic::Power;
+  // Emitters seen directly and direct lighting (paths of 1 and 2 segments) rendered apart by
+  // BDPT with this many samples per pixel, and left out of the chains (Veach's thesis sec.
+  // 11.4.2; Mitsuba's `directSamples`): they are easy for BDPT and would otherwise take most
+  // mutations. 0 keeps every path in the chains.
+  uint32_t direct_spp = 128;
 };
 
 struct MltStats {
@@ -39,7 +45,8 @@ struct MltStats {
 };
 
 struct MltResult {
-  RenderResult render;
+  RenderResult render;       // the chains' image (scaled by b_splatted; see MltStats)
+  RenderResult direct;       // paths of 1 and 2 segments by BDPT, when direct_spp > 0
   MltStats mlt;
 };
 
