@@ -3,7 +3,9 @@
 // step (fresh uniform numbers, with probability large_step_probability) or a small step (each
 // number moved by a normal of deviation sigma, wrapped to [0, 1)). Numbers are mutated lazily,
 // when first used in an iteration, so estimators that draw a varying count of numbers work
-// unchanged; reject() restores the previous state.
+// unchanged; reject() restores the previous state. Numbers come in kStreams interleaved streams
+// (camera subpath, light subpath, connections, as in pbrt-v3): a camera subpath that grows or
+// shrinks does not shift the numbers the light subpath uses, so small steps stay small.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -26,12 +28,17 @@ class PrimarySampleSampler {
   void start_iteration() {
     ++iteration_;
     large_step_ = rng_.next_float() < large_step_probability_;
-    index_ = 0;
+    start_stream(0);
   }
   // The first iteration after construction is always a large step (an independent sample).
   void start_large_step() {
     ++iteration_;
     large_step_ = true;
+    start_stream(0);
+  }
+  static constexpr int kStreams = 3;
+  void start_stream(int stream) {
+    stream_ = stream;
     index_ = 0;
   }
   bool large_step() const { return large_step_; }
@@ -46,7 +53,7 @@ class PrimarySampleSampler {
     --iteration_;
   }
 
-  float next_1d() { return value(index_++); }
+  float next_1d() { return value(stream_ + kStreams * index_++); }
   Point2 next_2d() {
     const float u = next_1d();
     return {u, next_1d()};
@@ -102,6 +109,7 @@ class PrimarySampleSampler {
   int64_t iteration_ = 0, last_large_step_ = 0;
   bool large_step_ = true;
   size_t index_ = 0;
+  int stream_ = 0;
 };
 
 }  // namespace dualight

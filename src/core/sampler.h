@@ -28,6 +28,7 @@ class IndependentSampler {
     const float u = rng_.next_float();
     return {u, rng_.next_float()};
   }
+  void start_stream(int) {}  // see PrimarySampleSampler
 
  private:
   Pcg32 rng_;
@@ -105,6 +106,7 @@ class SobolSampler {
     const uint32_t y = reverse_bits(laine_karras_permutation(reverse_bits(sobol_dimension1(index)), s.y));
     return {to_unit_float(x), to_unit_float(y)};
   }
+  void start_stream(int) {}  // see PrimarySampleSampler
 
  private:
   struct Seeds {

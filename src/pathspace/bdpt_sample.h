@@ -28,8 +28,11 @@ template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
                   Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
+  // The camera subpath continues the stream (0) that drew the film position.
   camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
+  sampler.start_stream(1);
   light_subpath(scene, sampler, limits, paths.light, counters);
+  sampler.start_stream(2);
   const Path& cam = paths.camera;
   const Path& light = paths.light;
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
