@@ -45,13 +45,19 @@ class Evaluator {
     splats_.clear();
     const Color L = bdpt_sample(scene_, camera_, bdpt_, x, y, sampler, paths_, counters, splats_, nullptr);
     out.splats.clear();
+    invalid_ += splats_.invalid();
     const uint32_t pixel = static_cast<uint32_t>(y) * camera_.width() + static_cast<uint32_t>(x);
-    if (!is_black(L)) out.splats.push_back({pixel, 0, L * (w * h)});
+    if (!is_finite(L)) {
+      ++invalid_;  // dropped and counted, as the pixel driver does
+    } else if (!is_black(L)) {
+      out.splats.push_back({pixel, 0, L * (w * h)});
+    }
     for (const Splat& s : splats_.splats()) out.splats.push_back(s);
     double f = 0.0;
     for (const Splat& s : out.splats) f += std::max(0.f, luminance(s.value));
     out.f = std::isfinite(f) ? static_cast<float>(f) : 0.f;
   }
+  uint64_t invalid() const { return invalid_; }
 
  private:
   const Scene& scene_;
@@ -59,6 +65,7 @@ class Evaluator {
   BdptOptions bdpt_;
   Subpaths paths_;
   SplatList splats_;
+  uint64_t invalid_ = 0;
 };
 
 struct Chain {
@@ -92,7 +99,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   }
   MltStats& mlt = result.mlt;
   const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
-  std::atomic<uint64_t> rays{0};
+  std::atomic<uint64_t> rays{0}, invalid{0};
 
   // 1. Bootstrap: independent samples estimate b and are the chains' candidate start states.
   const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
@@ -109,6 +116,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
       f_boot[i] = c.f;
     }
     rays.fetch_add(counters.rays, std::memory_order_relaxed);
+    invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
   });
   double sum = 0.0, sum_sq = 0.0;
   for (const double f : f_boot) {
@@ -206,6 +214,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
         ++done[c];
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
+      invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
       control.done.fetch_add(done[c], std::memory_order_relaxed);
     });
     uint64_t round = 0;
@@ -235,6 +244,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   RenderStats& stats = result.render.stats;
   stats.seconds = elapsed();
   stats.rays = rays.load();
+  stats.invalid_samples = invalid.load();
   stats.samples = total;
   stats.spp = static_cast<uint32_t>(total / pixels);
   stats.interrupted = control.cancelled();
