@@ -9,7 +9,8 @@ from typing import Any
 from dualight.image import Image
 from dualight.scene import Camera, Scene
 
-METHODS = ("path", "light", "bdpt", "pssmlt")
+METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt")
+_MLT = ("pssmlt", "mmlt")
 SAMPLERS = ("independent", "sobol")
 HEURISTICS = ("power", "balance")
 
@@ -79,6 +80,9 @@ def render(
         apart by BDPT (``direct_spp``, default 128) and left out of the chains. Its pixels are
         correlated, so ``image.variance`` is ``None``; ``image.stats`` has the normalisation
         ``b`` with its 95 % interval ``b_ci95`` and the acceptance rates.
+        ``"mmlt"``: multiplexed MLT (Hachisuka et al. 2014): chains per path length, each
+        sample one BDPT strategy; chains and mutations are allocated to lengths in proportion
+        to their bootstrap b_d. Needs a bounded ``max_depth`` and ``mutations_per_pixel``.
     spp:
         Samples per pixel (particles per pixel for ``"light"``). ``None`` renders until
         ``time_limit``. With both, whichever ends first stops the render (at a whole pass, so
@@ -149,16 +153,16 @@ def render(
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(SAMPLERS)}")
     if mutations_per_pixel is not None:
-        if method != "pssmlt":
-            raise ValueError("mutations_per_pixel applies to method='pssmlt' only")
+        if method not in _MLT:
+            raise ValueError("mutations_per_pixel applies to method='pssmlt' or 'mmlt' only")
         _check_int("mutations_per_pixel", mutations_per_pixel, 1)
         spp = mutations_per_pixel
-    if mlt is not None and method != "pssmlt":
-        raise ValueError("mlt options apply to method='pssmlt' only")
+    if mlt is not None and method not in _MLT:
+        raise ValueError("mlt options apply to method='pssmlt' or 'mmlt' only")
     if heuristic not in HEURISTICS:
         raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
-    if method not in ("bdpt", "pssmlt") and heuristic != "power":
-        raise ValueError("heuristic applies to method='bdpt' or 'pssmlt' only")
+    if method not in ("bdpt", *_MLT) and heuristic != "power":
+        raise ValueError("heuristic applies to method='bdpt', 'pssmlt' or 'mmlt' only")
     if method != "bdpt" and strategy_images:
         raise ValueError("strategy_images applies to method='bdpt' only")
     if strategy_images and max_depth < 1:
@@ -184,13 +188,16 @@ def render(
         run, options = _core.render_path, _core.PathTracerOptions(**common)
     elif method == "light":
         run, options = _core.render_light, _core.LightTracerOptions(**common)
-    elif method == "pssmlt":
+    elif method in _MLT:
         common["mutations_per_pixel"] = common.pop("spp")
         common.pop("sampler")
         run, options = (
             _core.render_pssmlt,
             _core.PssmltOptions(
-                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
+                **common,
+                heuristic=getattr(_core.MisHeuristic, heuristic),
+                multiplexed=method == "mmlt",
+                **(mlt or {}),
             ),
         )
     else:

@@ -166,7 +166,8 @@ void bind_pathspace(py::module_& m) {
   py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
       .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
                        double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
-                       float large_step_probability, MisHeuristic heuristic, uint32_t direct_spp) {
+                       float large_step_probability, MisHeuristic heuristic, uint32_t direct_spp,
+                       bool multiplexed) {
              check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
              if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
              if (chains < 1) throw py::value_error("chains must be >= 1");
@@ -183,12 +184,19 @@ void bind_pathspace(py::module_& m) {
              o.large_step_probability = large_step_probability;
              o.heuristic = heuristic;
              o.direct_spp = direct_spp;
+             o.multiplexed = multiplexed;
+             if (multiplexed && (max_depth < 1 || mutations_per_pixel == 0 || time_limit > 0.0)) {
+               throw py::value_error(
+                   "multiplexed MLT needs a bounded max_depth >= 1 and a mutations_per_pixel budget "
+                   "(no time_limit: each path length gets its share of the mutations)");
+             }
              return o;
            }),
            py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
            py::arg("chains") = 256, py::arg("sigma") = 0.01f, py::arg("large_step_probability") = 0.3f,
-           py::arg("heuristic") = MisHeuristic::Power, py::arg("direct_spp") = 128);
+           py::arg("heuristic") = MisHeuristic::Power, py::arg("direct_spp") = 128,
+           py::arg("multiplexed") = false);
 
   m.def(
       "render_pssmlt",

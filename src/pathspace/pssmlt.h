@@ -32,6 +32,9 @@ struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sa
   // 11.4.2; Mitsuba's `directSamples`): they are easy for BDPT and would otherwise take most
   // mutations. 0 keeps every path in the chains.
   uint32_t direct_spp = 128;
+  // Multiplexed MLT [Hachisuka et al. 2014]: chains per path length, each sample one BDPT
+  // strategy of that length (needs a bounded max_depth and a mutations_per_pixel budget).
+  bool multiplexed = false;
 };
 
 struct MltStats {
