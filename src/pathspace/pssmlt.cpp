@@ -126,9 +126,10 @@ struct Chain {
 // Independent samples (large steps from fresh samplers): their f values, by sample index.
 template <class MakeEvaluator>
 std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& opt, uint64_t seed, size_t n,
-                              std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+                              RenderControl& control, std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
   std::vector<double> f(n, 0.0);
   parallel_for_each_index(opt.threads, (n + 1023) / 1024, [&](size_t block) {
+    if (control.cancelled()) return;
     auto evaluate = make();
     Contribution c;
     TraceCounters counters;
@@ -318,7 +319,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
     double b_total = 0.0, var_total = 0.0;
     for (int d = first; d <= opt.max_depth; ++d) {
       const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-      f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, rays, invalid);
+      f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, control, rays, invalid);
       double sum = 0.0, sum_sq = 0.0;
       for (const double f : f_boot[d]) {
         sum += f;
@@ -355,7 +356,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   } else {
     const auto make = [&] { return Evaluator(scene, camera, opt, 0); };
     const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
-    const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, rays, invalid);
+    const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, control, rays, invalid);
     double sum = 0.0, sum_sq = 0.0;
     for (const double f : f_boot) {
       sum += f;
