@@ -8,6 +8,7 @@ void bind_geometry(py::module_& m);
 void bind_materials(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
+void bind_mlt(py::module_& m);
 void bind_radiosity(py::module_& m);
 }  // namespace dualight::bindings
 
@@ -17,5 +18,6 @@ PYBIND11_MODULE(_core, m) {
   dualight::bindings::bind_materials(m);
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
+  dualight::bindings::bind_mlt(m);
   dualight::bindings::bind_radiosity(m);
 }

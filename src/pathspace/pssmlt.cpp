@@ -19,8 +19,6 @@ namespace {
 constexpr uint64_t kBootstrapStream = 0x51ed'2701'a3c4'9b1full;
 constexpr uint64_t kChainStream = 0x2c9f'77d3'0e41'b58aull;
 
-float luminance(const Color& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 // What one BDPT sample contributes to the film: the own pixel's value scaled by the pixel count
 // (the film position is uniform over the film) and the light-tracing splats; f is their total
 // luminance.

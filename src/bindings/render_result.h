@@ -1,0 +1,57 @@
+// What every estimator's binding shares: the result as numpy arrays and a dict, and the checks
+// of the options they all take.
+#pragma once
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "bindings/numpy_util.h"
+#include "pathspace/render_stats.h"
+#include "geometry/scene.h"
+
+namespace dualight::bindings {
+
+namespace py = pybind11;
+
+inline py::dict stats_dict(const RenderStats& s) {
+  py::dict d;
+  d["samples"] = s.samples;
+  d["rays"] = s.rays;
+  d["skipped_connections"] = s.skipped_connections;
+  d["invalid_samples"] = s.invalid_samples;
+  d["spp"] = s.spp;
+  d["seconds"] = s.seconds;
+  d["samples_per_second"] = s.seconds > 0 ? static_cast<double>(s.samples) / s.seconds : 0.0;
+  d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
+  d["interrupted"] = s.interrupted;
+  d["time_limited"] = s.time_limited;
+  return d;
+}
+
+// Film and stats as numpy arrays and a dict; the arrays own the film's buffers.
+inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
+  const py::ssize_t h = r.film.height(), w = r.film.width();
+  py::dict d;
+  d["mean"] = to_numpy(r.film.mean(), {h, w, 3});
+  d["variance"] = to_numpy(r.film.variance_of_mean(), {h, w, 3});
+  d["counts"] = to_numpy(r.film.sample_counts(), {h, w});
+  d["light_paths"] = r.film.light_paths();
+  d["stats"] = stats_dict(r.stats);
+  d["keyboard_interrupt"] = keyboard_interrupt;
+  return d;
+}
+
+// The options every estimator shares, checked once.
+inline void check_common(uint32_t spp, int max_depth, int rr_depth, int threads, double time_limit) {
+  if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
+  if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
+  if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
+  if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
+}
+
+inline void check_emitters(const Scene& scene) {
+  if (scene.emitter_count() == 0) throw py::value_error("scene has no emitter: nothing would be lit");
+}
+
+
+}  // namespace dualight::bindings

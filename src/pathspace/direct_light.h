@@ -1,0 +1,25 @@
+// Emitters seen directly and direct light (paths of 1 and 2 segments) by BDPT, for the MLT
+// methods that leave them out of their chains (Veach's thesis sec. 11.4.2; Mitsuba's
+// `directSamples`): BDPT renders them well, and in a chain they would take most mutations.
+#pragma once
+#include <algorithm>
+
+#include "pathspace/bdpt.h"
+
+namespace dualight {
+
+inline RenderResult render_direct_light(const Scene& scene, const PinholeCamera& camera, const EstimatorOptions& base,
+                                        uint32_t spp, MisHeuristic heuristic, RenderControl& control) {
+  BdptOptions direct;
+  static_cast<EstimatorOptions&>(direct) = base;
+  direct.spp = spp;
+  direct.time_limit = 0.0;
+  direct.max_depth = base.max_depth < 0 ? 2 : std::min(base.max_depth, 2);
+  direct.heuristic = heuristic;
+  direct.seed = hash_combine(base.seed, 0xd1ec7ull);
+  RenderResult result = render_bdpt(scene, camera, direct, control);
+  control.done.store(0);
+  return result;
+}
+
+}  // namespace dualight

@@ -1,0 +1,72 @@
+// Path-space Metropolis light transport [Veach and Guibas 1997; Veach 1997, ch. 11]. A Markov
+// chain over complete paths x (emitter to camera) whose stationary density is proportional to
+// f*(x), the luminance of the path's measurement contribution over the whole film. Mutations:
+// bidirectional (delete and regenerate a subpath), lens subpath, lens, caustic and multi-chain
+// perturbations (src/pathspace/mutations), each chosen among those that suit the current path
+// with probability proportional to its weight. Start-up: `bootstrap` BDPT samples estimate
+// b = the integral of f* (with a 95 % interval) and the chains start from paths resampled from
+// them in proportion to their MIS-weighted contributions, so there is no start-up bias to
+// discard [Veach 1997, sec. 11.3.1]. Every mutation splats the current and proposed paths with
+// their expected weights (1 - a and a), times b / (f* M) for M mutations in all. Chains run in
+// parallel rounds and their splats merge in chain order: the image depends on the seed only.
+// Use it where paths are hard to find and their neighbours are found by perturbing them: light
+// through a gap, caustics seen directly or through glass.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pathspace/pssmlt.h"
+
+namespace dualight {
+
+struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampler is unused
+  uint32_t bootstrap = 100000;
+  uint32_t chains = 256;
+  MisHeuristic heuristic = MisHeuristic::Power;  // of the bootstrap samples and the direct light
+  uint32_t direct_spp = 128;                     // as PssmltOptions::direct_spp
+  // Selection weights; 0 disables a mutation. The bidirectional mutation alone is ergodic.
+  float bidirectional = 1.f;
+  float lens_subpath = 0.25f;
+  float lens_perturbation = 1.f;
+  float caustic_perturbation = 1.f;
+  float multi_chain_perturbation = 1.f;
+  // Film offsets of the lens and multi-chain perturbations, in pixels (0: a tenth of the film's
+  // width), and angular offsets of the caustic and multi-chain perturbations, in radians.
+  float lens_radius_min = 0.1f, lens_radius_max = 0.f;
+  float angle_min = 1e-4f, angle_max = 0.1f;
+};
+
+struct MutationStats {
+  std::string name;
+  uint64_t proposed = 0;  // chosen for a path
+  uint64_t accepted = 0;
+  uint64_t failed = 0;    // no valid proposal (missed ray, blocked connection, f = 0)
+};
+
+struct PathMltResult {
+  RenderResult render;  // the chains' image
+  RenderResult direct;  // paths of 1 and 2 segments by BDPT, when direct_spp > 0
+  MltStats mlt;
+  std::vector<MutationStats> mutations;
+};
+
+PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
+                         RenderControl& control);
+
+}  // namespace dualight
+
+namespace dualight {
+
+// For tests: every strategy of `count` bootstrap BDPT samples, its unweighted estimate's
+// luminance as BDPT computed it, and the same recomputed from the strategy's complete path as
+// f*(z) / p_{s,t}(z) with full_path.h's contribution and densities (equal without Russian
+// roulette).
+struct StrategyCheck {
+  int s = 0, t = 0;
+  double bdpt = 0.0, recomputed = 0.0;
+};
+std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,
+                                                 const MltOptions& options, size_t count);
+
+}  // namespace dualight
