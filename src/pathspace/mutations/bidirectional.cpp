@@ -22,6 +22,10 @@ double delete_probability(int nd, int k) {
 double add_weight(int ka, int nd) { return std::ldexp(1.0, -std::abs(ka - nd)); }
 
 double add_probability(const MutationContext& ctx, int ka, int nd, int k) {
+  // A length the chain does not allow has probability 0 (not just no share of the total): with
+  // direct_spp > 0 the chain must not make paths of 1 or 2 segments, which render_direct_light
+  // already counts and b does not include.
+  if (!ctx.length_allowed(static_cast<size_t>(k - nd + ka))) return 0.0;
   double total = 0.0;
   for (int a = std::max(1, nd - kMaxLengthChange); a <= nd + kMaxLengthChange; ++a) {
     if (ctx.length_allowed(static_cast<size_t>(k - nd + a))) total += add_weight(a, nd);
