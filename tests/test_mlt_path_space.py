@@ -61,3 +61,27 @@ def test_bidirectional_mutation_keeps_the_colour_of_paths_of_three_segments() ->
     ratio = sums.mean(axis=0) / ref.reshape(-1, 3).sum(axis=0)
     se = sums.std(axis=0, ddof=1) / np.sqrt(len(sums)) / ref.reshape(-1, 3).sum(axis=0)
     assert np.all(np.abs(ratio - 1.0) < 4 * se + 0.005), f"ratios {ratio}, se {se}"
+
+
+def test_mlt_is_deterministic_and_reports_each_mutation() -> None:
+    """The same seed gives the same image with 1 and 2 threads; stats count every mutation
+    type's proposals, acceptances and failures, and the bidirectional mutation is required."""
+    import dualight
+
+    scene = scenes.cornell_box(resolution=(16, 16), variant="caustics")
+    kw = dict(mutations_per_pixel=8, max_depth=6, seed=4, progress=False)
+    one = dualight.render(scene, "mlt", threads=1, **kw)
+    two = dualight.render(scene, "mlt", threads=2, **kw)
+    np.testing.assert_array_equal(np.asarray(one), np.asarray(two))
+    types = one.stats["mutation_types"]
+    assert set(types) == {
+        "bidirectional", "lens_subpath", "lens_perturbation", "caustic_perturbation",
+        "multi_chain_perturbation",
+    }
+    assert sum(t["proposed"] for t in types.values()) == one.stats["mutations"] == 16 * 16 * 8
+    for name, t in types.items():
+        assert t["proposed"] > 0, name  # the caustic box suits every mutation
+        assert t["accepted"] + t["failed"] <= t["proposed"]
+    assert one.stats["b"] > 0 and one.stats["b_ci95"] > 0
+    with pytest.raises(ValueError, match="bidirectional"):
+        dualight.render(scene, "mlt", mlt={"bidirectional": 0.0}, **kw)

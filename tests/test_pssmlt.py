@@ -1,7 +1,7 @@
-"""Primary-sample-space MLT over BDPT (Kelemen et al. 2002) and its multiplexed form (MMLT,
-Hachisuka et al. 2014), against the Mitsuba Cornell reference. MLT pixels are correlated (a
-chain splats into many pixels) and its brightness is set by estimates of b, so it is tested on
-block means with variances from independent runs."""
+"""Primary-sample-space MLT over BDPT (Kelemen et al. 2002), its multiplexed form (MMLT,
+Hachisuka et al. 2014) and path-space MLT (Veach 1997), against the Mitsuba Cornell reference.
+MLT pixels are correlated (a chain splats into many pixels) and its brightness is set by
+estimates of b, so it is tested on block means with variances from independent runs."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def _reference() -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(mean), np.asarray(var)
 
 
-METHODS = ("pssmlt", "mmlt")
+METHODS = ("pssmlt", "mmlt", "mlt")
 
 
 def _runs(method: str, **scene_kw) -> list[dualight.Image]:

@@ -9,8 +9,8 @@ from typing import Any
 from dualight.image import Image
 from dualight.scene import Camera, Scene
 
-METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt")
-_MLT = ("pssmlt", "mmlt")
+METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt", "mlt")
+_MLT = ("pssmlt", "mmlt", "mlt")
 SAMPLERS = ("independent", "sobol")
 HEURISTICS = ("power", "balance")
 
@@ -83,6 +83,13 @@ def render(
         ``"mmlt"``: multiplexed MLT (Hachisuka et al. 2014): chains per path length, each
         sample one BDPT strategy; chains and mutations are allocated to lengths in proportion
         to their bootstrap b_d. Needs a bounded ``max_depth`` and ``mutations_per_pixel``.
+        ``"mlt"``: path-space Metropolis light transport (Veach and Guibas 1997) with Veach's
+        mutations: bidirectional, lens subpath, and lens, caustic and multi-chain
+        perturbations, each chosen among those that suit the current path in proportion to
+        its weight (``mlt={"lens_perturbation": 1.0, ...}``). Chains start from BDPT samples
+        resampled in proportion to their contribution; budget, direct light, ``b`` and
+        ``variance`` as for ``"pssmlt"``; ``image.stats["mutation_types"]`` has each
+        mutation's proposals, acceptances and failures.
     spp:
         Samples per pixel (particles per pixel for ``"light"``). ``None`` renders until
         ``time_limit``. With both, whichever ends first stops the render (at a whole pass, so
@@ -111,10 +118,16 @@ def render(
     heuristic:
         BDPT's MIS heuristic: ``"power"`` (exponent 2, the default) or ``"balance"``.
     mlt:
-        ``"pssmlt"`` only: keyword options of ``dualight._core.PssmltOptions``: ``bootstrap``
-        (100000 independent samples for b and the chains' starts), ``chains`` (256),
-        ``sigma`` (0.01, small-step deviation), ``large_step_probability`` (0.3),
+        ``"pssmlt"`` and ``"mmlt"``: keyword options of ``dualight._core.PssmltOptions``:
+        ``bootstrap`` (100000 independent samples for b and the chains' starts), ``chains``
+        (256), ``sigma`` (0.01, small-step deviation), ``large_step_probability`` (0.3),
         ``direct_spp`` (128; 0 keeps direct light in the chains).
+        ``"mlt"``: of ``dualight._core.MltOptions``: ``bootstrap``, ``chains``,
+        ``direct_spp`` as above; mutation weights ``bidirectional`` (1), ``lens_subpath``
+        (0.25), ``lens_perturbation``, ``caustic_perturbation``,
+        ``multi_chain_perturbation`` (1 each; 0 disables); ``lens_radius_min`` (0.1 pixel),
+        ``lens_radius_max`` (0: a tenth of the film width), ``angle_min`` (1e-4 rad),
+        ``angle_max`` (0.1 rad).
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
@@ -154,15 +167,15 @@ def render(
         raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(SAMPLERS)}")
     if mutations_per_pixel is not None:
         if method not in _MLT:
-            raise ValueError("mutations_per_pixel applies to method='pssmlt' or 'mmlt' only")
+            raise ValueError("mutations_per_pixel applies to pssmlt, mmlt and mlt only")
         _check_int("mutations_per_pixel", mutations_per_pixel, 1)
         spp = mutations_per_pixel
     if mlt is not None and method not in _MLT:
-        raise ValueError("mlt options apply to method='pssmlt' or 'mmlt' only")
+        raise ValueError("mlt options apply to the MLT methods only (pssmlt, mmlt, mlt)")
     if heuristic not in HEURISTICS:
         raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
     if method not in ("bdpt", *_MLT) and heuristic != "power":
-        raise ValueError("heuristic applies to method='bdpt', 'pssmlt' or 'mmlt' only")
+        raise ValueError("heuristic applies to method='bdpt' and the MLT methods only")
     if method != "bdpt" and strategy_images:
         raise ValueError("strategy_images applies to method='bdpt' only")
     if strategy_images and max_depth < 1:
@@ -188,6 +201,15 @@ def render(
         run, options = _core.render_path, _core.PathTracerOptions(**common)
     elif method == "light":
         run, options = _core.render_light, _core.LightTracerOptions(**common)
+    elif method == "mlt":
+        common["mutations_per_pixel"] = common.pop("spp")
+        common.pop("sampler")
+        run, options = (
+            _core.render_mlt,
+            _core.MltOptions(
+                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
+            ),
+        )
     elif method in _MLT:
         common["mutations_per_pixel"] = common.pop("spp")
         common.pop("sampler")
