@@ -1,10 +1,12 @@
-"""Primary-sample-space MLT over BDPT (Kelemen et al. 2002), its multiplexed form (MMLT,
-Hachisuka et al. 2014) and path-space MLT (Veach 1997), against the Mitsuba Cornell reference.
-MLT pixels are correlated (a chain splats into many pixels) and its brightness is set by
-estimates of b, so it is tested on block means with variances from independent runs."""
+"""Primary-sample-space MLT over BDPT (Kelemen et al. 2002), with and without Kelemen's MIS of
+large steps, its multiplexed form (MMLT, Hachisuka et al. 2014) with a mutation budget or a
+time limit, and path-space MLT (Veach 1997), against the Mitsuba Cornell reference. MLT pixels
+are correlated (a chain splats into many pixels) and its brightness is set by estimates of b,
+so it is tested on block means with variances from independent runs."""
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 
@@ -37,17 +39,39 @@ def _reference() -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(mean), np.asarray(var)
 
 
-METHODS = ("pssmlt", "mmlt", "mlt")
+# Variants under test: (method, options of render). "pssmlt" and "mmlt" use Kelemen's MIS of
+# large steps (the default); "pssmlt_plain" the estimator without it; "mmlt_time" a time limit
+# instead of a mutation budget (see _time_limit); "mlt" path-space MLT (Veach).
+VARIANTS: dict[str, tuple[str, dict]] = {
+    "pssmlt": ("pssmlt", {}),
+    "pssmlt_plain": ("pssmlt", {"mlt": {"large_step_mis": False}}),
+    "mmlt": ("mmlt", {}),
+    "mmlt_time": ("mmlt", {}),
+    "mlt": ("mlt", {}),
+}
 
 
-def _runs(method: str, **scene_kw) -> list[dualight.Image]:
-    scene = scenes.cornell_box(resolution=(64, 64), **scene_kw)
+@functools.cache
+def _runs(variant: str, light_scale: float = 1.0) -> list[dualight.Image]:
+    method, kw = VARIANTS[variant]
+    budget = (
+        {"spp": None, "time_limit": _time_limit()}
+        if variant == "mmlt_time"
+        else {"mutations_per_pixel": MPP}
+    )
+    scene = scenes.cornell_box(resolution=(64, 64), light_scale=light_scale)
     return [
-        dualight.render(
-            scene, method, mutations_per_pixel=MPP, max_depth=8, seed=100 + i, progress=False
-        )
+        dualight.render(scene, method, max_depth=8, seed=100 + i, progress=False, **budget, **kw)
         for i in range(RUNS)
     ]
+
+
+def _time_limit() -> float:
+    """Twice what the MMLT renders of MPP mutations per pixel took on this machine just now:
+    most of that is the bootstrap and the direct light (the same here), so the chains get
+    about half the time, many times MPP mutations per pixel on a quiet machine and fewer under
+    load, when the renders' spread (which the block test measures) grows."""
+    return 2.0 * float(np.mean([r.stats["seconds"] for r in _runs("mmlt")]))
 
 
 def _block_test(runs: list[dualight.Image]) -> tuple[float, float, float]:
@@ -69,36 +93,32 @@ def _block_test(runs: list[dualight.Image]) -> tuple[float, float, float]:
     return float(passed.mean()), float(t.max()), critical
 
 
-@pytest.fixture(scope="module", params=METHODS)
-def method_runs(request) -> tuple[str, list[dualight.Image]]:
-    return request.param, _runs(request.param)
+@pytest.fixture(params=VARIANTS)
+def variant(request) -> str:
+    return request.param
 
 
-@pytest.fixture(scope="module")
-def cornell_runs() -> list[dualight.Image]:
-    return _runs("pssmlt")
-
-
-def test_block_means_match_mitsuba_and_a_dimmer_light_fails(method_runs) -> None:
-    method, runs = method_runs
+def test_block_means_match_mitsuba_and_a_dimmer_light_fails(variant: str) -> None:
+    runs = _runs(variant)
     passed, t_max, critical = _block_test(runs)
+    mpp = np.mean([r.stats["mutations"] for r in runs]) / 64**2
     print(
-        f"\n{method} {RUNS} runs x {MPP} mutations/pixel, {BLOCK}x{BLOCK} blocks: "
+        f"\n{variant} {RUNS} runs x {mpp:.0f} mutations/pixel, {BLOCK}x{BLOCK} blocks: "
         f"{100 * passed:.2f}% pass, max |t| {t_max:.2f} vs t* {critical:.2f}"
     )
     assert passed >= 0.9975
-    wrong, t_wrong, _ = _block_test(_runs(method, light_scale=0.95))
+    wrong, t_wrong, _ = _block_test(_runs(variant, light_scale=0.95))
     print(f"light x0.95: {100 * wrong:.2f}% pass, max |t| {t_wrong:.2f}")
     assert wrong < 0.9975
 
 
-def test_brightness_agrees_with_the_reference_within_b_interval(method_runs) -> None:
-    method, runs = method_runs
+def test_brightness_agrees_with_the_reference_within_b_interval(variant: str) -> None:
+    runs = _runs(variant)
     ref, _ = _reference()
     ratios = np.array([float(np.mean(r)) / float(ref.mean()) for r in runs])
     rel_sigma = np.array([r.stats["b_ci95"] / 1.96 / r.stats["b"] for r in runs])
     print(
-        f"\n{method} image mean / reference over {RUNS} seeds: {np.round(ratios, 4)} "
+        f"\n{variant} image mean / reference over {RUNS} seeds: {np.round(ratios, 4)} "
         f"(mean {ratios.mean():.4f}), b rel. sd {rel_sigma.mean():.4f}"
     )
     # Each image's brightness is b's estimate: within 4 of its standard errors.
@@ -108,13 +128,31 @@ def test_brightness_agrees_with_the_reference_within_b_interval(method_runs) -> 
     assert abs(ratios.mean() - 1.0) < 0.005
 
 
-def test_stats_and_options(cornell_runs) -> None:
-    s = cornell_runs[0].stats
-    assert cornell_runs[0].variance is None
-    assert s["method"] == "pssmlt" and s["mutations"] == 64 * 64 * MPP
+def test_stats_and_options() -> None:
+    image = _runs("pssmlt")[0]
+    s = image.stats
+    assert image.variance is None
+    assert s["method"] == "pssmlt" and s["mutations"] == 64 * 64 * MPP and s["large_step_mis"]
     assert 0.0 < s["large_step_acceptance_rate"] < s["small_step_acceptance_rate"] < 1.0
     assert s["b"] > 0 and 0 < s["b_ci95"] < 0.1 * s["b"]
     assert s["b_samples"] > 100000 and s["invalid_samples"] == 0
+    assert s["b_per_depth"] == [] and s["b_per_depth_ci95"] == []
+    # MMLT: b_d of the chains' lengths (3..8; 1 and 2 are the direct light), refined by large
+    # steps, summing to b; the mutations allocated by the bootstrap's b_d (each length's
+    # rounded) add up to the budget.
+    m = _runs("mmlt")[0].stats
+    b_d, ci_d = np.array(m["b_per_depth"]), np.array(m["b_per_depth_ci95"])
+    assert len(b_d) == len(ci_d) == 9 and np.all(b_d[:3] == 0) and np.all(ci_d[:3] == 0)
+    assert np.all(b_d[3:] > 0) and np.all((0 < ci_d[3:]) & (ci_d[3:] < 0.1 * b_d[3:]))
+    assert np.all(np.diff(b_d[3:]) < 0)  # every bounce loses light
+    assert math.isclose(b_d.sum(), m["b"], rel_tol=1e-12)
+    assert math.isclose(np.sqrt(np.sum(ci_d**2)), m["b_ci95"], rel_tol=1e-9)
+    assert m["b_samples"] == 6 * 100000 + m["large_steps"]
+    assert abs(m["mutations"] - 64 * 64 * MPP) <= 3
+    per_depth = m["mutations_per_depth"]
+    assert sum(per_depth) == m["mutations"] and per_depth[:3] == [0, 0, 0]
+    assert np.all(np.diff(per_depth[3:]) < 0) and per_depth[-1] > 0
+    assert _runs("mmlt_time")[0].stats["time_limited"] and not m["time_limited"]
     scene = scenes.cornell_box(resolution=(16, 16))
     one = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=1, progress=False)
     two = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=2, progress=False)
@@ -123,8 +161,6 @@ def test_stats_and_options(cornell_runs) -> None:
         dualight.render(scene, "bdpt", mutations_per_pixel=4, progress=False)
     with pytest.raises(ValueError, match="bounded max_depth"):
         dualight.render(scene, "mmlt", mutations_per_pixel=4, progress=False)
-    with pytest.raises(ValueError, match="time_limit"):
-        dualight.render(scene, "mmlt", spp=None, time_limit=1.0, max_depth=5, progress=False)
     mm1 = dualight.render(
         scene, "mmlt", mutations_per_pixel=4, max_depth=5, threads=1, progress=False
     )
@@ -136,6 +172,20 @@ def test_stats_and_options(cornell_runs) -> None:
         dualight.render(scene, "pssmlt", mutations_per_pixel=1, mlt={"sigmaa": 0.1}, progress=False)
     with pytest.raises(ValueError, match="sigma"):
         dualight.render(scene, "pssmlt", mutations_per_pixel=1, mlt={"sigma": 2.0}, progress=False)
+    # Without large steps Kelemen's MIS weights are the plain estimator's.
+    for method in ("pssmlt", "mmlt"):
+        mis, plain = (
+            dualight.render(
+                scene,
+                method,
+                mutations_per_pixel=4,
+                max_depth=5,
+                progress=False,
+                mlt={"large_step_probability": 0.0, "bootstrap": 4000, "large_step_mis": on},
+            )
+            for on in (True, False)
+        )
+        np.testing.assert_allclose(np.asarray(mis), np.asarray(plain), rtol=1e-5, atol=1e-7)
     # Without separate direct light, the chains carry it too and agree on the brightness.
     ref, _ = _reference()
     whole = dualight.render(

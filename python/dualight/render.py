@@ -77,12 +77,17 @@ def render(
         ``"pssmlt"``: primary-sample-space Metropolis light transport over BDPT (Kelemen et
         al. 2002); its budget is ``mutations_per_pixel`` (or ``spp``) and/or ``time_limit``.
         Emitters seen directly and direct lighting (paths of 1 and 2 segments) are rendered
-        apart by BDPT (``direct_spp``, default 128) and left out of the chains. Its pixels are
-        correlated, so ``image.variance`` is ``None``; ``image.stats`` has the normalisation
-        ``b`` with its 95 % interval ``b_ci95`` and the acceptance rates.
+        apart by BDPT (``direct_spp``, default 128) and left out of the chains. Large steps
+        also count as independent samples, combined with the chains' by Kelemen's MIS
+        (``large_step_mis``). Its pixels are correlated, so ``image.variance`` is ``None``;
+        ``image.stats`` has the normalisation ``b`` with its 95 % interval ``b_ci95`` (from
+        the bootstrap and every large step) and the acceptance rates.
         ``"mmlt"``: multiplexed MLT (Hachisuka et al. 2014): chains per path length, each
-        sample one BDPT strategy; chains and mutations are allocated to lengths in proportion
-        to their bootstrap b_d. Needs a bounded ``max_depth`` and ``mutations_per_pixel``.
+        sample one BDPT strategy; chains, mutations and (with ``time_limit``) time are
+        allocated to lengths in proportion to their bootstrap b_d, so the allocation is fixed
+        by the seed. Each b_d is refined by its chains' large steps: ``stats["b_per_depth"]``
+        and ``["b_per_depth_ci95"]``, with ``["mutations_per_depth"]``, indexed by path length
+        in segments. Needs a bounded ``max_depth``.
         ``"mlt"``: path-space Metropolis light transport (Veach and Guibas 1997) with Veach's
         mutations: bidirectional, lens subpath, and lens, caustic and multi-chain
         perturbations, each chosen among those that suit the current path in proportion to
@@ -119,9 +124,11 @@ def render(
         BDPT's MIS heuristic: ``"power"`` (exponent 2, the default) or ``"balance"``.
     mlt:
         ``"pssmlt"`` and ``"mmlt"``: keyword options of ``dualight._core.PssmltOptions``:
-        ``bootstrap`` (100000 independent samples for b and the chains' starts), ``chains``
-        (256), ``sigma`` (0.01, small-step deviation), ``large_step_probability`` (0.3),
-        ``direct_spp`` (128; 0 keeps direct light in the chains).
+        ``bootstrap`` (100000 independent samples for b, per path length for MMLT, and the
+        chains' starts), ``chains`` (256), ``sigma`` (0.01, small-step deviation),
+        ``large_step_probability`` (0.3), ``large_step_mis`` (True: Kelemen's MIS of large
+        steps; False: the chains' expected values only), ``direct_spp`` (128; 0 keeps direct
+        light in the chains).
         ``"mlt"``: of ``dualight._core.MltOptions``: ``bootstrap``, ``chains``,
         ``direct_spp`` as above; mutation weights ``bidirectional`` (1), ``lens_subpath``
         (0.25), ``lens_perturbation``, ``caustic_perturbation``,

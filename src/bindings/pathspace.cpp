@@ -122,14 +122,17 @@ void bind_pathspace(py::module_& m) {
   py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
       .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
                        double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
-                       float large_step_probability, MisHeuristic heuristic, uint32_t direct_spp,
-                       bool multiplexed) {
+                       float large_step_probability, bool large_step_mis, MisHeuristic heuristic,
+                       uint32_t direct_spp, bool multiplexed) {
              check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
              if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
              if (chains < 1) throw py::value_error("chains must be >= 1");
              if (!(sigma > 0.f && sigma < 1.f)) throw py::value_error("sigma must be in (0, 1)");
              if (!(large_step_probability >= 0.f && large_step_probability <= 1.f)) {
                throw py::value_error("large_step_probability must be in [0, 1]");
+             }
+             if (multiplexed && max_depth < 1) {
+               throw py::value_error("multiplexed MLT needs a bounded max_depth >= 1 (chains per path length)");
              }
              PssmltOptions o;
              static_cast<EstimatorOptions&>(o) = {mutations_per_pixel, max_depth, rr_depth, seed, threads,
@@ -138,21 +141,17 @@ void bind_pathspace(py::module_& m) {
              o.chains = chains;
              o.sigma = sigma;
              o.large_step_probability = large_step_probability;
+             o.large_step_mis = large_step_mis;
              o.heuristic = heuristic;
              o.direct_spp = direct_spp;
              o.multiplexed = multiplexed;
-             if (multiplexed && (max_depth < 1 || mutations_per_pixel == 0 || time_limit > 0.0)) {
-               throw py::value_error(
-                   "multiplexed MLT needs a bounded max_depth >= 1 and a mutations_per_pixel budget "
-                   "(no time_limit: each path length gets its share of the mutations)");
-             }
              return o;
            }),
            py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
            py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
            py::arg("chains") = 256, py::arg("sigma") = 0.01f, py::arg("large_step_probability") = 0.3f,
-           py::arg("heuristic") = MisHeuristic::Power, py::arg("direct_spp") = 128,
-           py::arg("multiplexed") = false);
+           py::arg("large_step_mis") = PssmltOptions{}.large_step_mis, py::arg("heuristic") = MisHeuristic::Power,
+           py::arg("direct_spp") = 128, py::arg("multiplexed") = false);
 
   m.def(
       "render_pssmlt",
@@ -162,22 +161,20 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
                                      progress);
-        const MltStats s = run.result.mlt;
-        const std::vector<float> direct = run.result.direct.film.mean();
-        const RenderStats direct_stats = run.result.direct.stats;
-        py::dict d = result_dict(std::move(run.result.render), run.keyboard_interrupt);
+        const MltStats& s = run.result.mlt;
+        py::dict d;
+        d["mean"] = to_numpy(std::move(run.result.image), {camera.height(), camera.width(), 3});
         d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
-        {  // chains rescaled to the final estimate of b, plus the separately rendered direct light
-          auto mean = d["mean"].cast<py::array_t<float>>();
-          float* m = mean.mutable_data();
-          const float k = s.b_splatted > 0.0 ? static_cast<float>(s.b / s.b_splatted) : 1.f;
-          const bool add_direct = options.direct_spp > 0;
-          for (py::ssize_t i = 0; i < mean.size(); ++i) m[i] = m[i] * k + (add_direct ? direct[i] : 0.f);
-        }
-        py::dict stats = d["stats"];
+        d["light_paths"] = s.mutations;
+        d["keyboard_interrupt"] = run.keyboard_interrupt;
+        py::dict stats = stats_dict(run.result.stats);
         stats["b"] = s.b;
         stats["b_ci95"] = s.b_ci95;
         stats["b_samples"] = s.independent_samples;
+        stats["b_per_depth"] = s.b_per_depth;
+        stats["b_per_depth_ci95"] = s.b_per_depth_ci95;
+        stats["mutations_per_depth"] = s.mutations_per_depth;
+        stats["large_step_mis"] = options.large_step_mis;
         stats["mutations"] = s.mutations;
         stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
         stats["large_steps"] = s.large_steps;
@@ -189,13 +186,15 @@ void bind_pathspace(py::module_& m) {
                 : 0.0;
         stats["zero_proposals"] = s.zero_proposals;
         stats["direct_spp"] = options.direct_spp;
-        stats["direct_seconds"] = direct_stats.seconds;
-        stats["rays"] = stats["rays"].cast<uint64_t>() + direct_stats.rays;
+        stats["direct_seconds"] = run.result.direct.seconds;
+        stats["rays"] = run.result.stats.rays + run.result.direct.rays;
+        d["stats"] = stats;
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
-      "Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, counts, light_paths, stats, "
-      "keyboard_interrupt); stats has b, b_ci95, mutations and acceptance rates.");
+      "Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, light_paths (= mutations), stats, "
+      "keyboard_interrupt); stats has b, b_ci95, mutations and acceptance rates, and when multiplexed "
+      "b_per_depth, b_per_depth_ci95 and mutations_per_depth (indexed by path length).");
 
   m.def(
       "verify_random_subpaths",

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <vector>
 
 #include "core/distribution.h"
@@ -121,6 +122,29 @@ struct Chain {
   Contribution current;
 };
 
+// Independent samples of f: the mean, with the variance of the mean from their spread.
+struct MeanEstimate {
+  double sum = 0.0, sum_sq = 0.0;
+  uint64_t n = 0;
+  void add(double f) {
+    sum += f;
+    sum_sq += f * f;
+    ++n;
+  }
+  MeanEstimate& operator+=(const MeanEstimate& o) {
+    sum += o.sum;
+    sum_sq += o.sum_sq;
+    n += o.n;
+    return *this;
+  }
+  double mean() const { return n > 0 ? sum / static_cast<double>(n) : 0.0; }
+  double variance_of_mean() const {
+    if (n < 2) return 0.0;
+    const double k = static_cast<double>(n);
+    return std::max(0.0, (sum_sq - sum * mean()) / (k - 1.0)) / k;
+  }
+};
+
 // Independent samples (large steps from fresh samplers): their f values, by sample index.
 template <class MakeEvaluator>
 std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& opt, uint64_t seed, size_t n,
@@ -143,22 +167,49 @@ std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& op
   return f;
 }
 
+MeanEstimate estimate_of(const std::vector<double>& f) {
+  MeanEstimate e;
+  for (const double x : f) e.add(x);
+  return e;
+}
+
+// Splat layers of the chains: the Metropolis part and the large steps' own part (see run_chains).
+constexpr uint32_t kMetropolisLayer = 0, kLargeStepLayer = 1;
+
 struct Population {
   uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0, zero_proposals = 0;
-  double large_f = 0.0, large_f_sq = 0.0;  // f of the large steps' proposals (independent samples)
+  MeanEstimate large_f;  // f of the large steps' proposals (independent samples)
   bool time_limited = false;
+  // Per pixel and channel, the sums of the splats of each layer.
+  std::vector<double> metropolis, large;
 };
 
 // Chains started from bootstrap samples chosen in proportion to f (no start-up bias), mutated
-// in rounds until `target` mutations (0: until the time limit); every mutation splats the
-// current and proposed states' contributions times `scale` / f, weighted by their acceptance
-// probabilities, and counts as one path of the film's normalisation.
+// in rounds until `target` mutations (0: none) or the `deadline` (seconds of `elapsed`; 0:
+// none), after a first round of 4 mutations per chain. The estimate of M mutations, with h a
+// state's contribution to the film and f its luminance, x the current state, y the proposal:
+//  * plain (Veach's expected values): y with weight a, x with 1 - a, each splatting h / f
+//    times b* / M. In the stationary chain these are samples of density f / b*, b* = E[f], M of
+//    them; b* is known only by its estimate, so they splat with the bootstrap's b_splat and
+//    the sum is rescaled to the final b (add_estimate).
+//  * large_step_mis [Kelemen et al. 2002 sec. 4]: each large step's proposal (probability p
+//    per mutation, so p M in expectation) is also a uniform sample, density 1. The
+//    multi-sample balance heuristic over the two techniques [Veach97 sec. 9.2] gives every
+//    sample h / (M (f / b* + p)). MIS weights only need to sum to one, so they may use b_splat
+//    (fixed before the chains run) for b*: w_chain = (f / b) / (f / b + p), w_large = p / (f / b + p).
+//    Then a large step adds w_large h / (p M) = h / (M (f / b + p)), unbiased whatever b is; a
+//    chain sample adds w_chain h b* / (M f) = h / (M (f / b + p)) times b* / b, rescaled to the
+//    final b like the plain estimate. So y splats (a + L) h / (f / b + p) (a in the Metropolis
+//    layer; L = 1 for a large step, in the large-step layer) and x (1 - a) h / (f / b + p);
+//    with p = 0 this is the plain estimate.
 template <class MakeEvaluator>
 Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const std::vector<double>& f_boot,
-                      uint64_t boot_seed, uint64_t chain_seed, size_t n_chains, uint64_t target, float scale,
-                      const std::function<double()>& elapsed, RenderControl& control, Film& film,
+                      uint64_t boot_seed, uint64_t chain_seed, size_t n_chains, uint64_t target, double deadline,
+                      double b_splat, size_t pixels, const std::function<double()>& elapsed, RenderControl& control,
                       std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
   Population pop;
+  pop.metropolis.assign(3 * pixels, 0.0);
+  if (opt.large_step_mis) pop.large.assign(3 * pixels, 0.0);
   const DiscreteDistribution pick(f_boot);
   std::vector<Chain> chains;
   chains.reserve(n_chains);
@@ -178,15 +229,19 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
     }
     rays.fetch_add(counters.rays, std::memory_order_relaxed);
   }
+  const float b = static_cast<float>(b_splat), p_large = opt.large_step_probability;
+  // What a state's h is multiplied by, before its weight a, 1 - a or L (see above).
+  const auto per_h = [&](float f) { return opt.large_step_mis ? 1.f / (f / b + p_large) : b / f; };
   const bool unbounded = target == 0;
   std::vector<SplatList> out(n_chains);
-  std::vector<double> large_f(n_chains, 0.0), large_f_sq(n_chains, 0.0);
-  std::vector<uint64_t> done(n_chains, 0), accepted(n_chains, 0), large(n_chains, 0), large_acc(n_chains, 0),
-      zero(n_chains, 0);
+  std::vector<MeanEstimate> large_f(n_chains);
+  std::vector<uint64_t> done(n_chains, 0), accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
   uint64_t total = 0;
-  uint64_t per_chain = 16;
+  uint64_t per_chain = 4;  // the first round only measures the speed
   while ((unbounded || total < target) && !control.cancelled()) {
-    if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
+    // The first round always runs: a population is never missing from the image, even when the
+    // bootstrap and the direct light took all the time.
+    if (deadline > 0.0 && total > 0 && elapsed() >= deadline) {
       pop.time_limited = true;
       break;
     }
@@ -210,20 +265,19 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
         evaluate(chain.sampler, proposed, counters);
         const float a = chain.current.f > 0.f ? std::min(1.f, proposed.f / chain.current.f) : 1.f;
         if (proposed.f > 0.f) {
-          for (const Splat& sp : proposed.splats) splats.add(sp.pixel, sp.value * (scale * a / proposed.f));
+          const float k = per_h(proposed.f);
+          for (const Splat& sp : proposed.splats) {
+            splats.add(sp.pixel, sp.value * (a * k), kMetropolisLayer);
+            if (large_step && opt.large_step_mis) splats.add(sp.pixel, sp.value * k, kLargeStepLayer);
+          }
         } else {
           ++zero[c];
         }
         if (chain.current.f > 0.f && a < 1.f) {
-          for (const Splat& sp : chain.current.splats) {
-            splats.add(sp.pixel, sp.value * (scale * (1.f - a) / chain.current.f));
-          }
+          const float k = (1.f - a) * per_h(chain.current.f);
+          for (const Splat& sp : chain.current.splats) splats.add(sp.pixel, sp.value * k, kMetropolisLayer);
         }
-        if (large_step) {
-          ++large[c];
-          large_f[c] += proposed.f;
-          large_f_sq[c] += static_cast<double>(proposed.f) * proposed.f;
-        }
+        if (large_step) large_f[c].add(proposed.f);
         if (proposed.f > 0.f && chain.rng.next_float() < a) {
           std::swap(chain.current, proposed);
           chain.sampler.accept();
@@ -235,29 +289,45 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
         ++done[c];
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
-      invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
+      invalid.fetch_add(evaluate.invalid() + splats.invalid(), std::memory_order_relaxed);
       control.done.fetch_add(done[c], std::memory_order_relaxed);
     });
+    // In chain order, so that the sums do not depend on the schedule.
     uint64_t round = 0;
     for (size_t c = 0; c < n_chains; ++c) {
-      film.add_splats(out[c], done[c]);
+      for (const Splat& sp : out[c].splats()) {
+        double* sum = (sp.layer == kMetropolisLayer ? pop.metropolis : pop.large).data() + 3 * sp.pixel;
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += sp.value[ch];
+      }
       round += done[c];
     }
     total += round;
     if (control.cancelled() || round == 0) break;
-    const double per_mutation = std::max(elapsed() - round_start, 1e-6) / static_cast<double>(round);
-    per_chain = static_cast<uint64_t>(std::clamp(0.25 / per_mutation / n_chains, 1.0, 1e6));
+    // Rounds of about 0.25 s (the Ctrl-C and progress latency), shorter near the deadline.
+    const double now = elapsed();
+    const double per_mutation = std::max(now - round_start, 1e-6) / static_cast<double>(round);
+    const double round_seconds = deadline > 0.0 ? std::clamp(0.5 * (deadline - now), 0.001, 0.25) : 0.25;
+    per_chain = static_cast<uint64_t>(std::clamp(round_seconds / per_mutation / n_chains, 1.0, 1e6));
   }
   pop.mutations = total;
   for (size_t c = 0; c < n_chains; ++c) {
     pop.accepted += accepted[c];
-    pop.large_steps += large[c];
+    pop.large_steps += large_f[c].n;
     pop.large_steps_accepted += large_acc[c];
     pop.zero_proposals += zero[c];
     pop.large_f += large_f[c];
-    pop.large_f_sq += large_f_sq[c];
   }
   return pop;
+}
+
+// Adds a population's estimate to `image`: its Metropolis layer rescaled from the b it was
+// splatted with to the final b, its large-step layer as it is (see run_chains), over its mutations.
+void add_estimate(const Population& pop, double b_splat, double b_final, std::vector<double>& image) {
+  if (pop.mutations == 0) return;
+  const double m = static_cast<double>(pop.mutations);
+  const double k = b_final / b_splat / m;
+  for (size_t i = 0; i < image.size(); ++i) image[i] += pop.metropolis[i] * k;
+  for (size_t i = 0; i < pop.large.size(); ++i) image[i] += pop.large[i] / m;
 }
 
 void add_population(MltStats& mlt, const Population& pop) {
@@ -270,7 +340,7 @@ void add_population(MltStats& mlt, const Population& pop) {
 
 // Emitters seen directly and direct light by BDPT, when asked for; true when that is all.
 bool render_direct(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, MltResult& result,
-                   RenderControl& control) {
+                   std::vector<double>& image, RenderControl& control) {
   if (opt.direct_spp == 0) return false;
   BdptOptions direct;
   static_cast<EstimatorOptions&>(direct) = opt;
@@ -279,13 +349,12 @@ bool render_direct(const Scene& scene, const PinholeCamera& camera, const Pssmlt
   direct.max_depth = opt.max_depth < 0 ? 2 : std::min(opt.max_depth, 2);
   direct.heuristic = opt.heuristic;
   direct.seed = hash_combine(opt.seed, 0xd1ec7ull);
-  result.direct = render_bdpt(scene, camera, direct, control);
+  const RenderResult r = render_bdpt(scene, camera, direct, control);
+  const std::vector<float> mean = r.film.mean();
+  std::copy(mean.begin(), mean.end(), image.begin());
+  result.direct = r.stats;
   control.done.store(0);
-  if (control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2)) {
-    result.render.stats = result.direct.stats;
-    return true;
-  }
-  return false;
+  return control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2);
 }
 
 }  // namespace
@@ -297,86 +366,105 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   const std::function<double()> elapsed = [start] {
     return std::chrono::duration<double>(Clock::now() - start).count();
   };
-  MltResult result{{Film(camera.width(), camera.height()), {}}, {Film(camera.width(), camera.height()), {}}, {}};
-  if (render_direct(scene, camera, opt, result, control)) return result;
+  MltResult result;
   MltStats& mlt = result.mlt;
-  const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
-  const uint64_t target = pixels * opt.spp;  // 0: until the time limit
-  control.total.store(target);
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  std::vector<double> image(3 * pixels, 0.0);  // direct light, then each population's estimate
   std::atomic<uint64_t> rays{0}, invalid{0};
-  const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
-  const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
+  if (!render_direct(scene, camera, opt, result, image, control)) {
+    const uint64_t target = pixels * opt.spp;  // 0: until the time limit
+    control.total.store(target);
+    const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
+    const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
 
-  if (opt.multiplexed) {
-    // Multiplexed MLT: one population of chains per path length d, each with its own b_d from
-    // its bootstrap; chains and mutations are allocated in proportion to b_d, deterministically,
-    // so the brightness does not depend on which lengths the chains happened to visit.
-    const int first = opt.direct_spp > 0 ? 3 : 1;
-    std::vector<double> b(static_cast<size_t>(opt.max_depth) + 1, 0.0), var(b.size(), 0.0);
-    std::vector<std::vector<double>> f_boot(b.size());
-    double b_total = 0.0, var_total = 0.0;
-    for (int d = first; d <= opt.max_depth; ++d) {
-      const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-      f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, control, rays, invalid);
-      double sum = 0.0, sum_sq = 0.0;
-      for (const double f : f_boot[d]) {
-        sum += f;
-        sum_sq += f * f;
-      }
-      b[d] = sum / static_cast<double>(n_boot);
-      var[d] = std::max(0.0, (sum_sq - sum * b[d]) / std::max(1.0, static_cast<double>(n_boot - 1))) / n_boot;
-      b_total += b[d];
-      var_total += var[d];
-    }
-    mlt.b = mlt.b_splatted = b_total;
-    mlt.b_ci95 = 1.96 * std::sqrt(var_total);
-    mlt.independent_samples = n_boot * static_cast<uint64_t>(std::max(0, opt.max_depth - first + 1));
-    if (b_total > 0.0) {
-      std::vector<uint64_t> targets(b.size(), 0);
-      uint64_t target_sum = 0;
+    if (opt.multiplexed) {
+      // Multiplexed MLT: one population of chains per path length d, each with its own b_d from
+      // its bootstrap; chains, mutations and time are allocated in proportion to the bootstrap
+      // b_d, deterministically, so the brightness does not depend on which lengths the chains
+      // happened to visit. Each b_d is then refined by its chains' large steps, and its
+      // population's Metropolis part rescaled to it.
+      const int first = opt.direct_spp > 0 ? 3 : 1;
+      const size_t depths = static_cast<size_t>(opt.max_depth) + 1;
+      std::vector<std::vector<double>> f_boot(depths);
+      std::vector<double> b_boot(depths, 0.0);
+      double b_total = 0.0;
       for (int d = first; d <= opt.max_depth; ++d) {
-        if (b[d] > 0.0) targets[d] = std::max<uint64_t>(1, std::llround(static_cast<double>(target) * b[d] / b_total));
+        const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
+        f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, control, rays, invalid);
+        b_boot[d] = estimate_of(f_boot[d]).mean();
+        b_total += b_boot[d];
+      }
+      mlt.b_splatted = b_total;
+      mlt.b_per_depth.assign(depths, 0.0);
+      mlt.b_per_depth_ci95.assign(depths, 0.0);
+      mlt.mutations_per_depth.assign(depths, 0);
+      uint64_t target_sum = 0;
+      std::vector<uint64_t> targets(depths, 0);
+      for (int d = first; d <= opt.max_depth && target > 0; ++d) {
+        if (b_boot[d] > 0.0) {
+          targets[d] = std::max<uint64_t>(1, std::llround(static_cast<double>(target) * b_boot[d] / b_total));
+        }
         target_sum += targets[d];
       }
-      for (int d = first; d <= opt.max_depth && !control.cancelled(); ++d) {
-        if (targets[d] == 0) continue;
-        const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-        const size_t chains_d = std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * b[d] / b_total)));
-        // Splats of length d carry b_d times its share of the normalisation: the film divides by
-        // the sum of all targets.
-        const float scale = static_cast<float>(b[d] * static_cast<double>(target_sum) / targets[d]);
-        const Population pop = run_chains(make, opt, f_boot[d], hash_combine(opt.seed, kBootstrapStream + d),
-                                          hash_combine(opt.seed, kChainStream + d), chains_d, targets[d], scale,
-                                          elapsed, control, result.render.film, rays, invalid);
-        add_population(mlt, pop);
+      if (target > 0) control.total.store(target_sum);
+      // Smallest b_d first: each length gets its share of the time left, so the overrun of a
+      // length's last round falls on the larger shares after it, where it matters least.
+      std::vector<int> order(static_cast<size_t>(opt.max_depth - first + 1));
+      std::iota(order.begin(), order.end(), first);
+      std::stable_sort(order.begin(), order.end(), [&](int i, int j) { return b_boot[i] < b_boot[j]; });
+      double var_total = 0.0, b_left = b_total;
+      for (const int d : order) {
+        if (control.cancelled()) break;
+        MeanEstimate b_d = estimate_of(f_boot[d]);
+        if (b_boot[d] > 0.0) {
+          double deadline = 0.0;
+          if (opt.time_limit > 0.0) {
+            const double now = elapsed();
+            deadline = now + std::max(0.0, opt.time_limit - now) * std::min(1.0, b_boot[d] / b_left);
+            b_left -= b_boot[d];
+          }
+          const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
+          const size_t chains_d =
+              std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * b_boot[d] / b_total)));
+          const Population pop =
+              run_chains(make, opt, f_boot[d], hash_combine(opt.seed, kBootstrapStream + d),
+                         hash_combine(opt.seed, kChainStream + d), chains_d, targets[d], deadline, b_boot[d], pixels,
+                         elapsed, control, rays, invalid);
+          add_population(mlt, pop);
+          mlt.mutations_per_depth[d] = pop.mutations;
+          result.stats.time_limited |= pop.time_limited;
+          b_d += pop.large_f;
+          add_estimate(pop, b_boot[d], b_d.mean(), image);
+        }
+        mlt.b_per_depth[d] = b_d.mean();
+        mlt.b_per_depth_ci95[d] = 1.96 * std::sqrt(b_d.variance_of_mean());
+        mlt.b += b_d.mean();
+        var_total += b_d.variance_of_mean();
+        mlt.independent_samples += b_d.n;
       }
-    }
-  } else {
-    const auto make = [&] { return Evaluator(scene, camera, opt, 0); };
-    const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
-    const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, control, rays, invalid);
-    double sum = 0.0, sum_sq = 0.0;
-    for (const double f : f_boot) {
-      sum += f;
-      sum_sq += f * f;
-    }
-    mlt.b_splatted = sum / static_cast<double>(n_boot);
-    if (mlt.b_splatted > 0.0) {
-      const Population pop =
-          run_chains(make, opt, f_boot, boot_seed, hash_combine(opt.seed, kChainStream), n_chains, target,
-                     static_cast<float>(mlt.b_splatted), elapsed, control, result.render.film, rays, invalid);
-      add_population(mlt, pop);
-      result.render.stats.time_limited = pop.time_limited;
-      sum += pop.large_f;
-      sum_sq += pop.large_f_sq;
-      // b from the bootstrap and every large step (independent samples too, Kelemen et al.).
-      const double n = static_cast<double>(n_boot + pop.large_steps);
-      mlt.independent_samples = n_boot + pop.large_steps;
-      mlt.b = sum / n;
-      mlt.b_ci95 = 1.96 * std::sqrt(std::max(0.0, (sum_sq - sum * mlt.b) / std::max(n - 1.0, 1.0)) / n);
+      mlt.b_ci95 = 1.96 * std::sqrt(var_total);
+    } else {
+      const auto make = [&] { return Evaluator(scene, camera, opt, 0); };
+      const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
+      const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, control, rays, invalid);
+      MeanEstimate b = estimate_of(f_boot);
+      mlt.b_splatted = b.mean();
+      if (mlt.b_splatted > 0.0) {
+        const Population pop =
+            run_chains(make, opt, f_boot, boot_seed, hash_combine(opt.seed, kChainStream), n_chains, target,
+                       opt.time_limit, mlt.b_splatted, pixels, elapsed, control, rays, invalid);
+        add_population(mlt, pop);
+        result.stats.time_limited = pop.time_limited;
+        b += pop.large_f;  // large steps are independent samples too (Kelemen et al.)
+        add_estimate(pop, mlt.b_splatted, b.mean(), image);
+      }
+      mlt.independent_samples = b.n;
+      mlt.b = b.mean();
+      mlt.b_ci95 = 1.96 * std::sqrt(b.variance_of_mean());
     }
   }
-  RenderStats& stats = result.render.stats;
+  result.image.assign(image.begin(), image.end());
+  RenderStats& stats = result.stats;
   stats.seconds = elapsed();
   stats.rays = rays.load();
   stats.invalid_samples = invalid.load();

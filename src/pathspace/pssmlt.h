@@ -5,11 +5,15 @@
 // and large steps (fresh numbers). Start-up bias is avoided as in Veach's thesis (sec. 11.3.1) and
 // pbrt-v3: `bootstrap` independent samples estimate the normalisation b = E[f] and the chains
 // start from states resampled in proportion to f. Every mutation splats both the current and
-// the proposed state, weighted by their acceptance probabilities (expected values), times b / M
-// for M mutations in all. Use it where paths are hard to find but, once found, have neighbours
-// that are found by small steps: caustics, light through gaps.
+// the proposed state, weighted by their acceptance probabilities (expected values); with
+// `large_step_mis` the large steps' proposals also count as independent samples, combined with
+// the chains' by Kelemen's MIS (see run_chains in pssmlt.cpp). The chains' part is rescaled at
+// the end to b estimated from the bootstrap and every large step. Use it where paths are hard
+// to find but, once found, have neighbours that are found by small steps: caustics, light
+// through gaps.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "core/render_control.h"
 #include "geometry/camera.h"
@@ -32,24 +36,35 @@ struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sa
   // 11.4.2; Mitsuba's `directSamples`): they are easy for BDPT and would otherwise take most
   // mutations. 0 keeps every path in the chains.
   uint32_t direct_spp = 128;
+  // Kelemen's MIS of large steps: a large step's proposal is also an independent sample of
+  // the image, weighted against the chains by the balance heuristic. Lowers the noise where f
+  // is small, which the chains visit rarely.
+  bool large_step_mis = true;
   // Multiplexed MLT [Hachisuka et al. 2014]: chains per path length, each sample one BDPT
-  // strategy of that length (needs a bounded max_depth and a mutations_per_pixel budget).
+  // strategy of that length (needs a bounded max_depth). Chains, mutations and, with a
+  // time_limit, time are allocated to lengths in proportion to their bootstrap b_d.
   bool multiplexed = false;
 };
 
 struct MltStats {
   // Normalisation E[f] and the half-width of its 95 % interval, from the bootstrap samples and
-  // every large step (independent samples too, Kelemen et al.); the image is scaled by it at the
-  // end (`b_splatted` is the bootstrap estimate the splats were made with).
+  // every large step (independent samples too, Kelemen et al.); the chains' part of the image
+  // is rescaled to it at the end (`b_splatted` is the bootstrap estimate the splats were made
+  // with). Multiplexed: the sums over path lengths of b_d and of its variance.
   double b = 0.0, b_ci95 = 0.0, b_splatted = 0.0;
+  // Multiplexed: b_d and its 95 % half-width by path length d in segments (index d; 0 for the
+  // lengths rendered apart as direct light). Empty otherwise.
+  std::vector<double> b_per_depth, b_per_depth_ci95;
+  std::vector<uint64_t> mutations_per_depth;  // multiplexed, by path length as b_per_depth
   uint64_t independent_samples = 0;
   uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0;
   uint64_t zero_proposals = 0;  // proposals with f = 0 (rejected)
 };
 
 struct MltResult {
-  RenderResult render;       // the chains' image (scaled by b_splatted; see MltStats)
-  RenderResult direct;       // paths of 1 and 2 segments by BDPT, when direct_spp > 0
+  std::vector<float> image;  // H x W x 3: the chains' estimate at the final b, plus the direct light
+  RenderStats stats;         // the chains' work; seconds counts the whole render
+  RenderStats direct;        // paths of 1 and 2 segments by BDPT, when direct_spp > 0
   MltStats mlt;
 };
 
