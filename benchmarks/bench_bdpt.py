@@ -83,6 +83,15 @@ def errors(image: np.ndarray, ref: np.ndarray, ref_var: np.ndarray, mask: np.nda
     }
 
 
+def efficiency_ratios(top: dict[str, dict[str, Any]], pairs: list[tuple[str, str]]) -> dict:
+    """Equal-time ratios of efficiency 1 / (relMSE * seconds), "a / b" for each pair present."""
+    return {
+        f"{a} / {b}": top[a]["efficiency"] / top[b]["efficiency"]
+        for a, b in pairs
+        if a in top and b in top
+    }
+
+
 def run_dualight(scene: dualight.Scene, method: str, budget: float, max_depth: int, seed: int):
     start = time.perf_counter()
     image = dualight.render(
@@ -160,11 +169,7 @@ def main() -> None:
         for r in runs:  # each renderer's longest run
             if r["seconds"] > top.get(r["renderer"], {"seconds": -1.0})["seconds"]:
                 top[r["renderer"]] = r
-        ratios = {
-            f"{a} / {b}": top[a]["efficiency"] / top[b]["efficiency"]
-            for a, b in RATIOS
-            if a in top and b in top
-        }
+        ratios = efficiency_ratios(top, RATIOS)
         summary["scenes"][name] = {
             "reference": ref_name,
             "reference_spp": info.get("spp"),

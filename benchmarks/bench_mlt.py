@@ -45,7 +45,14 @@ import dualight
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from bench_bdpt import RESULTS, SCENES, errors, load_reference, run_dualight  # noqa: E402
+from bench_bdpt import (  # noqa: E402
+    RESULTS,
+    SCENES,
+    efficiency_ratios,
+    errors,
+    load_reference,
+    run_dualight,
+)
 
 METHODS = ("path", "bdpt", "pssmlt", "mmlt", "mlt")
 MLT_METHODS = ("pssmlt", "mmlt", "mlt")
@@ -179,14 +186,21 @@ def environment() -> dict[str, Any]:
     }
 
 
+def prepare(name: str) -> tuple[str, dualight.Scene, np.ndarray, np.ndarray, dict[str, Any]]:
+    """A scene of the set with its reference (name, mean, variance, metadata); its BVH is built
+    by a 1-spp render, so no timed render pays for it."""
+    ref_name, build = SCENES[name]
+    ref, ref_var, info = load_reference(ref_name)
+    scene = build()
+    dualight.render(scene, "path", spp=1, max_depth=int(info["max_depth"]), progress=False)
+    return ref_name, scene, ref, ref_var, info
+
+
 def figure(spp: int, skipped: dict[str, str], suffix: str) -> dict[str, Any] | None:
     """Veach's figure on the door scene: BDPT at ``spp`` against MLT in the same wall time."""
-    ref_name, build = SCENES[FIGURE_SCENE]
-    ref, ref_var, info = load_reference(ref_name)
+    ref_name, scene, ref, ref_var, info = prepare(FIGURE_SCENE)
     max_depth = int(info["max_depth"])
-    scene = build()
     full = np.ones(ref.shape[:2], dtype=bool)
-    dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
     img_b, secs_b, stats_b = run_counted(scene, "bdpt", max_depth, seed=40, spp=spp)
     bdpt = {**record(scene, "bdpt", secs_b, stats_b), **errors(img_b, ref, ref_var, full)}
     mlt = None
@@ -319,12 +333,9 @@ def main() -> None:
         "scenes": {},
     }
     for name in args.scenes.split(","):
-        ref_name, build = SCENES[name]
-        ref, ref_var, info = load_reference(ref_name)
+        ref_name, scene, ref, ref_var, info = prepare(name)
         max_depth = int(info["max_depth"])
-        scene = build()
         full = np.ones(ref.shape[:2], dtype=bool)
-        dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
         calibrations: dict[str, dict[str, Any]] = {}
         runs: list[dict[str, Any]] = []
         print(f"{name}:")
@@ -358,11 +369,7 @@ def main() -> None:
                 )
 
         top = {r["method"]: r for r in runs if r["budget"] == max(budgets)}
-        ratios = {
-            f"{a} / {b}": top[a]["efficiency"] / top[b]["efficiency"]
-            for a, b in RATIOS
-            if a in top and b in top
-        }
+        ratios = efficiency_ratios(top, RATIOS)
         summary["scenes"][name] = {
             "reference": ref_name,
             "reference_spp": info.get("spp"),

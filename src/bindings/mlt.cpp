@@ -67,24 +67,9 @@ void bind_mlt(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_mlt(*scene, camera, options, control); }, control,
                                      progress);
-        const MltStats s = run.result.mlt;
-        const std::vector<float> direct = run.result.direct.film.mean();
-        const RenderStats direct_stats = run.result.direct.stats;
-        const std::vector<MutationStats> mutations = run.result.mutations;
-        py::dict d = result_dict(std::move(run.result.render), run.keyboard_interrupt);
-        d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
-        if (options.direct_spp > 0) {
-          auto mean = d["mean"].cast<py::array_t<float>>();
-          float* m = mean.mutable_data();
-          for (py::ssize_t i = 0; i < mean.size(); ++i) m[i] += direct[i];
-        }
-        py::dict stats = d["stats"];
-        stats["b"] = s.b;
-        stats["b_ci95"] = s.b_ci95;
-        stats["b_samples"] = s.independent_samples;
-        stats["mutations"] = s.mutations;
-        stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
-        stats["zero_proposals"] = s.zero_proposals;
+        const std::vector<MutationStats>& mutations = run.result.mutations;  // not moved below
+        py::dict d = mlt_result_dict(std::move(run.result.result), camera.width(), camera.height(),
+                                     options.direct_spp, run.keyboard_interrupt);
         py::dict per_mutation;
         for (const MutationStats& ms : mutations) {
           py::dict e;
@@ -94,14 +79,12 @@ void bind_mlt(py::module_& m) {
           e["acceptance_rate"] = ms.proposed > 0 ? static_cast<double>(ms.accepted) / ms.proposed : 0.0;
           per_mutation[ms.name.c_str()] = e;
         }
+        py::dict stats = d["stats"];
         stats["mutation_types"] = per_mutation;
-        stats["direct_spp"] = options.direct_spp;
-        stats["direct_seconds"] = direct_stats.seconds;
-        stats["rays"] = stats["rays"].cast<uint64_t>() + direct_stats.rays;
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
-      "Path-space MLT (Veach); returns dict(mean, variance=None, counts, light_paths, stats, keyboard_interrupt); "
+      "Path-space MLT (Veach); returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); "
       "stats has b, b_ci95, mutations, acceptance rates and per mutation type counts.");
 
   m.def(

@@ -161,22 +161,14 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
                                      progress);
-        const MltStats& s = run.result.mlt;
-        py::dict d;
-        d["mean"] = to_numpy(std::move(run.result.image), {camera.height(), camera.width(), 3});
-        d["variance"] = py::none();  // chain samples are correlated: no per-pixel variance
-        d["light_paths"] = s.mutations;
-        d["keyboard_interrupt"] = run.keyboard_interrupt;
-        py::dict stats = stats_dict(run.result.stats);
-        stats["b"] = s.b;
-        stats["b_ci95"] = s.b_ci95;
-        stats["b_samples"] = s.independent_samples;
+        const MltStats s = run.result.mlt;
+        py::dict d = mlt_result_dict(std::move(run.result), camera.width(), camera.height(), options.direct_spp,
+                                     run.keyboard_interrupt);
+        py::dict stats = d["stats"];
         stats["b_per_depth"] = s.b_per_depth;
         stats["b_per_depth_ci95"] = s.b_per_depth_ci95;
         stats["mutations_per_depth"] = s.mutations_per_depth;
         stats["large_step_mis"] = options.large_step_mis;
-        stats["mutations"] = s.mutations;
-        stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
         stats["large_steps"] = s.large_steps;
         stats["large_step_acceptance_rate"] =
             s.large_steps > 0 ? static_cast<double>(s.large_steps_accepted) / s.large_steps : 0.0;
@@ -184,11 +176,6 @@ void bind_pathspace(py::module_& m) {
             s.mutations > s.large_steps
                 ? static_cast<double>(s.accepted - s.large_steps_accepted) / (s.mutations - s.large_steps)
                 : 0.0;
-        stats["zero_proposals"] = s.zero_proposals;
-        stats["direct_spp"] = options.direct_spp;
-        stats["direct_seconds"] = run.result.direct.seconds;
-        stats["rays"] = run.result.stats.rays + run.result.direct.rays;
-        d["stats"] = stats;
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),

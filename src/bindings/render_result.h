@@ -5,6 +5,9 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings/numpy_util.h"
+#include <pybind11/stl.h>
+
+#include "pathspace/mlt_result.h"
 #include "pathspace/render_stats.h"
 #include "geometry/scene.h"
 
@@ -53,5 +56,30 @@ inline void check_emitters(const Scene& scene) {
   if (scene.emitter_count() == 0) throw py::value_error("scene has no emitter: nothing would be lit");
 }
 
+
+// An MLT method's result: its image (no per-pixel variance: chain samples are correlated),
+// light_paths = mutations, and stats with b, its interval, the acceptance rate and the direct
+// light's share of the work.
+inline py::dict mlt_result_dict(MltResult&& r, int width, int height, uint32_t direct_spp,
+                                bool keyboard_interrupt) {
+  const MltStats& s = r.mlt;
+  py::dict d;
+  d["mean"] = to_numpy(std::move(r.image), {height, width, 3});
+  d["variance"] = py::none();
+  d["light_paths"] = s.mutations;
+  d["keyboard_interrupt"] = keyboard_interrupt;
+  py::dict stats = stats_dict(r.stats);
+  stats["b"] = s.b;
+  stats["b_ci95"] = s.b_ci95;
+  stats["b_samples"] = s.independent_samples;
+  stats["mutations"] = s.mutations;
+  stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
+  stats["zero_proposals"] = s.zero_proposals;
+  stats["direct_spp"] = direct_spp;
+  stats["direct_seconds"] = r.direct.seconds;
+  stats["rays"] = r.stats.rays + r.direct.rays;
+  d["stats"] = stats;
+  return d;
+}
 
 }  // namespace dualight::bindings

@@ -8,6 +8,8 @@
 // Densities for MIS are per film instead (1 / (A_film cos^3)): each pixel's camera samples compete
 // with light paths from the whole image, pixels x as many (pbrt's convention).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include "core/ray.h"
 #include "core/sampling.h"
 
@@ -23,6 +25,12 @@ class PinholeCamera {
   Vec3 origin() const { return origin_; }
   Vec3 forward() const { return forward_; }
 
+  // Film position (in pixels) uniform over the film for u uniform in [0, 1)^2, kept below the
+  // width and height, which float rounding of u * width could reach.
+  Point2 film_position(Point2 u) const {
+    const float w = static_cast<float>(width_), h = static_cast<float>(height_);
+    return {std::min(u.u * w, std::nextafter(w, 0.f)), std::min(u.v * h, std::nextafter(h, 0.f))};
+  }
   // Ray through film position (x, y), both in pixels; direction normalised.
   Ray generate_ray(float x, float y) const;
 

@@ -22,6 +22,28 @@ struct Subpaths {
   Path camera, light;
 };
 
+// Every strategy (s, t) joining the two subpaths, of depth s + t - 1 within [opt.min_depth,
+// opt.max_depth], that carries light: visit(s, t, unweighted contribution, sampled, raster),
+// where `sampled` stands in for the emitter end (s = 1) or the camera (t = 1) and `raster` is
+// the film position of a light-tracing strategy (t = 1). Connections draw from `sampler`.
+template <class Sampler, class Visit>
+void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt,
+                       const Subpaths& paths, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
+  const Path& cam = paths.camera;
+  const Path& light = paths.light;
+  for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
+    for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
+      const int depth = s + t - 1;
+      if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
+      if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
+      Vertex sampled;
+      Point2 raster{};
+      const Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
+      if (!is_black(c)) visit(s, t, c, sampled, raster);
+    }
+  }
+}
+
 // `layers`: the film whose strategy layers receive the own-pixel contributions (only when
 // opt.strategy_images), else unused.
 template <class Sampler>
@@ -33,31 +55,24 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   sampler.start_stream(1);
   light_subpath(scene, sampler, limits, paths.light, counters);
   sampler.start_stream(2);
-  const Path& cam = paths.camera;
-  const Path& light = paths.light;
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
 
   Color L(0.f);
-  for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
-    for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
-      const int depth = s + t - 1;
-      if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
-      if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
-      Vertex sampled;
-      Point2 raster{};
-      Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
-      if (is_black(c)) continue;
-      c *= mis_weight(scene, camera, light, cam, sampled, s, t, opt.heuristic);
-      if (t == 1) {
-        const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u);
-        splats.add(target, c);
-        if (opt.strategy_images) splats.add(target, c, static_cast<uint32_t>(strategy_layer(s, t) + 1));
-      } else {
-        L += c;
-        if (opt.strategy_images && is_finite(c)) layers->add_layer_sample(strategy_layer(s, t), pixel, c);
-      }
-    }
-  }
+  for_each_strategy(scene, camera, opt, paths, sampler, counters,
+                    [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
+                      c *= mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, opt.heuristic);
+                      if (t == 1) {
+                        const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() +
+                                                static_cast<uint32_t>(raster.u);
+                        splats.add(target, c);
+                        if (opt.strategy_images) splats.add(target, c, static_cast<uint32_t>(strategy_layer(s, t) + 1));
+                      } else {
+                        L += c;
+                        if (opt.strategy_images && is_finite(c)) {
+                          layers->add_layer_sample(strategy_layer(s, t), pixel, c);
+                        }
+                      }
+                    });
   return L;
 }
 

@@ -6,9 +6,11 @@
 #include <memory>
 
 #include "core/distribution.h"
+#include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/sampler.h"
 #include "pathspace/bdpt_sample.h"
+#include "pathspace/chain_rounds.h"
 #include "pathspace/direct_light.h"
 #include "pathspace/mutations/bidirectional.h"
 #include "pathspace/mutations/caustic_perturbation.h"
@@ -54,25 +56,17 @@ template <class Visit>
 void bootstrap_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt, uint64_t seed,
                       uint64_t index, Subpaths& paths, TraceCounters& counters, const Visit& visit) {
   IndependentSampler sampler(seed, index, 0);
-  const Point2 u = sampler.next_2d();
-  const float w = static_cast<float>(camera.width()), h = static_cast<float>(camera.height());
-  const float x = std::min(u.u * w, std::nextafter(w, 0.f)), y = std::min(u.v * h, std::nextafter(h, 0.f));
+  const Point2 film = camera.film_position(sampler.next_2d());
   const WalkLimits limits{bdpt.max_depth, bdpt.rr_depth};
-  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
+  camera_subpath(scene, camera, film.u, film.v, sampler, limits, paths.camera, counters);
   light_subpath(scene, sampler, limits, paths.light, counters);
-  for (int t = 1; t <= static_cast<int>(paths.camera.size()); ++t) {
-    for (int s = 0; s <= static_cast<int>(paths.light.size()); ++s) {
-      const int depth = s + t - 1;
-      if (depth < bdpt.min_depth || (bdpt.max_depth >= 0 && depth > bdpt.max_depth)) continue;
-      if (s == 1 && t == 1) continue;
-      Vertex sampled;
-      Point2 raster{};
-      Color c = connect(scene, camera, paths.light, paths.camera, s, t, sampler, sampled, raster, counters);
-      if (is_black(c)) continue;
-      if (t >= 2) c *= w * h;
-      visit(s, t, c, mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, bdpt.heuristic), sampled);
-    }
-  }
+  const float pixels = static_cast<float>(camera.width()) * static_cast<float>(camera.height());
+  for_each_strategy(scene, camera, bdpt, paths, sampler, counters,
+                    [&](int s, int t, Color c, const Vertex& sampled, const Point2&) {
+                      if (t >= 2) c *= pixels;
+                      visit(s, t, c, mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, bdpt.heuristic),
+                            sampled);
+                    });
 }
 
 // The complete path (emitter first) that strategy (s, t) made.
@@ -159,162 +153,158 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   const auto start = Clock::now();
   const auto elapsed = [start] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
-  PathMltResult result{{Film(camera.width(), camera.height()), {}}, {Film(camera.width(), camera.height()), {}}, {}, {}};
+  PathMltResult out;
+  MltResult& result = out.result;
+  MltStats& mlt = result.mlt;
+  std::vector<double> image(3 * pixels, 0.0);      // direct light, then the chains' estimate
+  std::vector<double> chain_sum(3 * pixels, 0.0);  // the chains' splats, over all mutations
   const MutationSet mutations(opt, camera);
-  for (size_t i = 0; i < mutations.size(); ++i) result.mutations.push_back({mutations[i].name(), 0, 0, 0});
+  for (size_t i = 0; i < mutations.size(); ++i) out.mutations.push_back({mutations[i].name(), 0, 0, 0});
+  std::atomic<uint64_t> rays{0};
   if (opt.direct_spp > 0) {
-    result.direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control);
-    if (control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2)) {
-      result.render.stats = result.direct.stats;
-      return result;
-    }
+    const RenderResult direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control);
+    const std::vector<float> mean = direct.film.mean();
+    std::copy(mean.begin(), mean.end(), image.begin());
+    result.direct = direct.stats;
   }
+  const bool direct_only = opt.direct_spp > 0 && opt.max_depth >= 0 && opt.max_depth <= 2;
   const BdptOptions bdpt = bootstrap_bdpt(opt);
   const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
   const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
-  std::atomic<uint64_t> rays{0};
-
-  // Bootstrap: each sample's total weight (the sum over its strategies estimates b).
-  std::vector<double> weight(n_boot, 0.0);
-  parallel_for_each_index(opt.threads, (n_boot + 1023) / 1024, [&](size_t block) {
-    if (control.cancelled()) return;
-    Subpaths paths;
-    TraceCounters counters;
-    for (size_t i = block * 1024; i < std::min(n_boot, (block + 1) * 1024); ++i) {
-      bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
-                       [&](int, int, const Color& c, float mis, const Vertex&) { weight[i] += weight_of(c, mis); });
-    }
-    rays.fetch_add(counters.rays, std::memory_order_relaxed);
-  });
-  MltStats& mlt = result.mlt;
-  double sum = 0.0, sum_sq = 0.0;
-  for (const double w : weight) {
-    sum += w;
-    sum_sq += w * w;
-  }
-  const double n = static_cast<double>(n_boot);
-  mlt.b = mlt.b_splatted = sum / n;
-  mlt.b_ci95 = 1.96 * std::sqrt(std::max(0.0, (sum_sq - sum * mlt.b) / std::max(n - 1.0, 1.0)) / n);
-  mlt.independent_samples = n_boot;
-
-  const uint64_t target = pixels * opt.spp;  // 0: until the time limit
-  control.total.store(target);
-  const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
   std::vector<Chain> chains;
-  if (mlt.b > 0.0 && !control.cancelled()) {
-    // Start states: a bootstrap sample in proportion to its weight, then one of its strategies.
-    const DiscreteDistribution pick(weight);
-    Subpaths paths;
-    TraceCounters counters;
-    for (size_t c = 0; c < n_chains; ++c) {
-      Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), c), {}};
-      for (int attempt = 0; attempt < 16 && chain.current.f.f_lum <= 0.0; ++attempt) {
-        float u_pick = chain.rng.next_float();
-        const size_t i = pick.sample(u_pick);
-        double target_w = chain.rng.next_float() * weight[i];
-        bool chosen = false;
-        bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
-                         [&](int s, int t, const Color& col, float mis, const Vertex& sampled) {
-                           const double w = weight_of(col, mis);
-                           if (chosen || w <= 0.0) return;
-                           if (target_w < w) {
-                             chain.current.path = strategy_path(paths, sampled, s, t);
-                             chosen = true;
-                           }
-                           target_w -= w;
-                         });
-        if (chosen) evaluate(camera, chain.current);
-      }
-      chains.push_back(std::move(chain));
-    }
-    rays.fetch_add(counters.rays, std::memory_order_relaxed);
-  }
-
-  // Rounds: each chain mutates its share; splats merge in chain order.
-  const bool unbounded = target == 0;
-  const int min_depth = bdpt.min_depth;
-  const float scale = static_cast<float>(mlt.b_splatted);
-  std::vector<SplatList> out(chains.size());
-  std::vector<std::vector<MutationStats>> counts(chains.size(), result.mutations);
-  std::vector<uint64_t> done(chains.size(), 0);
-  uint64_t total = 0, per_chain = 16;
-  while (!chains.empty() && (unbounded || total < target) && !control.cancelled()) {
-    if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
-      result.render.stats.time_limited = true;
-      break;
-    }
-    const double round_start = elapsed();
-    const uint64_t remaining = unbounded ? UINT64_MAX : target - total;
-    parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
-      const uint64_t share = unbounded ? per_chain
-                                       : std::min<uint64_t>(per_chain, remaining / chains.size() +
-                                                                           (c < remaining % chains.size()));
-      Chain& chain = chains[c];
+  uint64_t total = 0;
+  if (!direct_only && !control.cancelled()) {
+    // Bootstrap: each sample's total weight (the sum over its strategies estimates b).
+    std::vector<double> weight(n_boot, 0.0);
+    parallel_for_each_index(opt.threads, (n_boot + 1023) / 1024, [&](size_t block) {
+      if (control.cancelled()) return;
+      Subpaths paths;
       TraceCounters counters;
-      const MutationContext ctx{scene, camera, min_depth, opt.max_depth, counters};
-      SplatList& splats = out[c];
-      splats.clear();
-      done[c] = 0;
-      State proposed;
-      for (uint64_t m = 0; m < share; ++m) {
-        if ((m & 63u) == 0 && control.cancelled()) break;
-        ++done[c];
-        State& x = chain.current;
-        if (x.f.f_lum <= 0.0) continue;  // no start path: this chain only counts its mutations
-        double select_x = 0.0;
-        const size_t k = mutations.select(x.path, chain.rng.next_float(), select_x);
-        MutationStats& stat = counts[c][k];
-        ++stat.proposed;
-        Transition t;
-        float a = 0.f;
-        if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) && evaluate(camera, proposed) &&
-            t.forward > 0.0) {
-          const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-          const double ratio = (proposed.f.f_lum * t.reverse * select_y) / (x.f.f_lum * t.forward * select_x);
-          a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
-        } else {
-          ++stat.failed;
-        }
-        // Expected values: each state's f / f* times b, weighted by its acceptance odds.
-        if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a));
-        if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a)));
-        if (a > 0.f && chain.rng.next_float() < a) {
-          std::swap(x, proposed);
-          ++stat.accepted;
-        }
+      for (size_t i = block * 1024; i < std::min(n_boot, (block + 1) * 1024); ++i) {
+        bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
+                         [&](int, int, const Color& c, float mis, const Vertex&) { weight[i] += weight_of(c, mis); });
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
-      control.done.fetch_add(done[c], std::memory_order_relaxed);
     });
-    uint64_t round = 0;
-    for (size_t c = 0; c < chains.size(); ++c) {
-      result.render.film.add_splats(out[c], done[c]);
-      round += done[c];
+    const MeanEstimate b = estimate_of(weight);
+    mlt.b = mlt.b_splatted = b.mean();
+    mlt.b_ci95 = 1.96 * std::sqrt(b.variance_of_mean());
+    mlt.independent_samples = b.n;
+
+    const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
+    if (mlt.b > 0.0 && !control.cancelled()) {
+      // Start states: a bootstrap sample in proportion to its weight, then one of its strategies.
+      const DiscreteDistribution pick(weight);
+      Subpaths paths;
+      TraceCounters counters;
+      for (size_t c = 0; c < n_chains; ++c) {
+        Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), c), {}};
+        for (int attempt = 0; attempt < 16 && chain.current.f.f_lum <= 0.0; ++attempt) {
+          float u_pick = chain.rng.next_float();
+          const size_t i = pick.sample(u_pick);
+          double target_w = chain.rng.next_float() * weight[i];
+          bool chosen = false;
+          bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
+                           [&](int s, int t, const Color& col, float mis, const Vertex& sampled) {
+                             const double w = weight_of(col, mis);
+                             if (chosen || w <= 0.0) return;
+                             if (target_w < w) {
+                               chain.current.path = strategy_path(paths, sampled, s, t);
+                               chosen = true;
+                             }
+                             target_w -= w;
+                           });
+          if (chosen) evaluate(camera, chain.current);
+        }
+        chains.push_back(std::move(chain));
+      }
+      rays.fetch_add(counters.rays, std::memory_order_relaxed);
     }
-    total += round;
-    if (control.cancelled() || round == 0) break;
-    const double per_mutation = std::max(elapsed() - round_start, 1e-6) / static_cast<double>(round);
-    per_chain = static_cast<uint64_t>(std::clamp(0.25 / per_mutation / static_cast<double>(chains.size()), 1.0, 1e6));
-  }
-  for (const auto& chain_counts : counts) {
-    for (size_t i = 0; i < chain_counts.size(); ++i) {
-      result.mutations[i].proposed += chain_counts[i].proposed;
-      result.mutations[i].accepted += chain_counts[i].accepted;
-      result.mutations[i].failed += chain_counts[i].failed;
+
+    // Rounds: each chain mutates its share; splats merge in chain order.
+    const uint64_t target = pixels * opt.spp;  // 0: until the time limit
+    control.total.store(target);
+    const float scale = static_cast<float>(mlt.b_splatted);
+    std::vector<SplatList> splat_lists(chains.size());
+    std::vector<std::vector<MutationStats>> counts(chains.size(), out.mutations);
+    std::vector<uint64_t> done(chains.size(), 0);
+    ChainRounds rounds(chains.size(), target, opt.time_limit);
+    while (!chains.empty() && rounds.next(elapsed(), control)) {
+      parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
+        const uint64_t share = rounds.share(c);
+        Chain& chain = chains[c];
+        TraceCounters counters;
+        const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
+        SplatList& splats = splat_lists[c];
+        splats.clear();
+        done[c] = 0;
+        State proposed;
+        for (uint64_t m = 0; m < share; ++m) {
+          if ((m & 63u) == 0 && control.cancelled()) break;
+          ++done[c];
+          State& x = chain.current;
+          if (x.f.f_lum <= 0.0) continue;  // no start path: this chain only counts its mutations
+          double select_x = 0.0;
+          const size_t k = mutations.select(x.path, chain.rng.next_float(), select_x);
+          MutationStats& stat = counts[c][k];
+          ++stat.proposed;
+          Transition t;
+          float a = 0.f;
+          if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) && evaluate(camera, proposed) &&
+              t.forward > 0.0) {
+            const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
+            const double ratio = (proposed.f.f_lum * t.reverse * select_y) / (x.f.f_lum * t.forward * select_x);
+            a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
+          } else {
+            ++stat.failed;
+          }
+          // Expected values: each state's f / f* times b, weighted by its acceptance odds.
+          if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a));
+          if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a)));
+          if (a > 0.f && chain.rng.next_float() < a) {
+            std::swap(x, proposed);
+            ++stat.accepted;
+          }
+        }
+        rays.fetch_add(counters.rays, std::memory_order_relaxed);
+        control.done.fetch_add(done[c], std::memory_order_relaxed);
+      });
+      // In chain order, so that the sums do not depend on the schedule.
+      uint64_t round = 0;
+      for (size_t c = 0; c < chains.size(); ++c) {
+        for (const Splat& sp : splat_lists[c].splats()) {
+          for (int ch = 0; ch < 3; ++ch) chain_sum[3 * sp.pixel + ch] += sp.value[ch];
+        }
+        round += done[c];
+      }
+      if (!rounds.finish(round, elapsed(), control)) break;
+    }
+    total = rounds.total();
+    result.stats.time_limited = rounds.time_limited();
+    for (const auto& chain_counts : counts) {
+      for (size_t i = 0; i < chain_counts.size(); ++i) {
+        out.mutations[i].proposed += chain_counts[i].proposed;
+        out.mutations[i].accepted += chain_counts[i].accepted;
+        out.mutations[i].failed += chain_counts[i].failed;
+      }
     }
   }
+  if (total > 0) {
+    for (size_t i = 0; i < image.size(); ++i) image[i] += chain_sum[i] / static_cast<double>(total);
+  }
+  result.image.assign(image.begin(), image.end());
   mlt.mutations = total;
-  for (const MutationStats& s : result.mutations) {
+  for (const MutationStats& s : out.mutations) {
     mlt.accepted += s.accepted;
     mlt.zero_proposals += s.failed;
   }
-  RenderStats& stats = result.render.stats;
+  RenderStats& stats = result.stats;
   stats.seconds = elapsed();
   stats.rays = rays.load();
   stats.samples = total;
   stats.spp = static_cast<uint32_t>(total / pixels);
   stats.interrupted = control.cancelled();
-  return result;
+  return out;
 }
 
 std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,

@@ -16,7 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "pathspace/pssmlt.h"
+#include "pathspace/estimator_options.h"
+#include "pathspace/mis_weight.h"
+#include "pathspace/mlt_result.h"
+#include "core/render_control.h"
+#include "geometry/scene.h"
 
 namespace dualight {
 
@@ -45,9 +49,7 @@ struct MutationStats {
 };
 
 struct PathMltResult {
-  RenderResult render;  // the chains' image
-  RenderResult direct;  // paths of 1 and 2 segments by BDPT, when direct_spp > 0
-  MltStats mlt;
+  MltResult result;  // b is the bootstrap's (MLT has no large steps to refine it)
   std::vector<MutationStats> mutations;
 };
 

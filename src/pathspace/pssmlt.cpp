@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "core/distribution.h"
+#include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/primary_sample_sampler.h"
 #include "pathspace/bdpt_sample.h"
+#include "pathspace/chain_rounds.h"
+#include "pathspace/direct_light.h"
 
 namespace dualight {
 
@@ -46,9 +49,9 @@ class Evaluator {
       one_strategy(sampler, out, counters);
       return;
     }
-    const Point2 u = sampler.next_2d();
-    const float w = static_cast<float>(camera_.width()), h = static_cast<float>(camera_.height());
-    const float x = std::min(u.u * w, std::nextafter(w, 0.f)), y = std::min(u.v * h, std::nextafter(h, 0.f));
+    const Point2 film = camera_.film_position(sampler.next_2d());
+    const float x = film.u, y = film.v;
+    const float pixels = static_cast<float>(camera_.width()) * static_cast<float>(camera_.height());
     splats_.clear();
     const Color L = bdpt_sample(scene_, camera_, bdpt_, x, y, sampler, paths_, counters, splats_, nullptr);
     out.splats.clear();
@@ -57,7 +60,7 @@ class Evaluator {
     if (!is_finite(L)) {
       ++invalid_;  // dropped and counted, as the pixel driver does
     } else if (!is_black(L)) {
-      out.splats.push_back({pixel, 0, L * (w * h)});
+      out.splats.push_back({pixel, 0, L * pixels});
     }
     for (const Splat& s : splats_.splats()) out.splats.push_back(s);
     double f = 0.0;
@@ -74,9 +77,9 @@ class Evaluator {
     const int n = d == 1 ? 1 : d + 1;  // (s, t) with s + t = d + 1, t >= 1; (1, 1) only as (0, 2)
     const int s = d == 1 ? 0 : std::min(static_cast<int>(sampler.next_1d() * static_cast<float>(n)), n - 1);
     const int t = d + 1 - s;
-    const Point2 u = sampler.next_2d();
-    const float w = static_cast<float>(camera_.width()), h = static_cast<float>(camera_.height());
-    const float x = std::min(u.u * w, std::nextafter(w, 0.f)), y = std::min(u.v * h, std::nextafter(h, 0.f));
+    const Point2 film = camera_.film_position(sampler.next_2d());
+    const float x = film.u, y = film.v;
+    const float pixels = static_cast<float>(camera_.width()) * static_cast<float>(camera_.height());
     // Subpaths of exactly t and s vertices (no Russian roulette: the strategy fixes the length).
     camera_subpath(scene_, camera_, x, y, sampler, WalkLimits{t - 1, 1 << 30}, paths_.camera, counters);
     if (static_cast<int>(paths_.camera.size()) != t) return;
@@ -102,7 +105,7 @@ class Evaluator {
           {static_cast<uint32_t>(raster.v) * camera_.width() + static_cast<uint32_t>(raster.u), 0, c});
     } else {
       out.splats.push_back(
-          {static_cast<uint32_t>(y) * camera_.width() + static_cast<uint32_t>(x), 0, c * (w * h)});
+          {static_cast<uint32_t>(y) * camera_.width() + static_cast<uint32_t>(x), 0, c * pixels});
     }
     out.f = std::max(0.f, luminance(out.splats.back().value));
   }
@@ -123,28 +126,6 @@ struct Chain {
 };
 
 // Independent samples of f: the mean, with the variance of the mean from their spread.
-struct MeanEstimate {
-  double sum = 0.0, sum_sq = 0.0;
-  uint64_t n = 0;
-  void add(double f) {
-    sum += f;
-    sum_sq += f * f;
-    ++n;
-  }
-  MeanEstimate& operator+=(const MeanEstimate& o) {
-    sum += o.sum;
-    sum_sq += o.sum_sq;
-    n += o.n;
-    return *this;
-  }
-  double mean() const { return n > 0 ? sum / static_cast<double>(n) : 0.0; }
-  double variance_of_mean() const {
-    if (n < 2) return 0.0;
-    const double k = static_cast<double>(n);
-    return std::max(0.0, (sum_sq - sum * mean()) / (k - 1.0)) / k;
-  }
-};
-
 // Independent samples (large steps from fresh samplers): their f values, by sample index.
 template <class MakeEvaluator>
 std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& opt, uint64_t seed, size_t n,
@@ -165,12 +146,6 @@ std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& op
     invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
   });
   return f;
-}
-
-MeanEstimate estimate_of(const std::vector<double>& f) {
-  MeanEstimate e;
-  for (const double x : f) e.add(x);
-  return e;
 }
 
 // Splat layers of the chains: the Metropolis part and the large steps' own part (see run_chains).
@@ -232,25 +207,13 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
   const float b = static_cast<float>(b_splat), p_large = opt.large_step_probability;
   // What a state's h is multiplied by, before its weight a, 1 - a or L (see above).
   const auto per_h = [&](float f) { return opt.large_step_mis ? 1.f / (f / b + p_large) : b / f; };
-  const bool unbounded = target == 0;
   std::vector<SplatList> out(n_chains);
   std::vector<MeanEstimate> large_f(n_chains);
   std::vector<uint64_t> done(n_chains, 0), accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
-  uint64_t total = 0;
-  uint64_t per_chain = 4;  // the first round only measures the speed
-  while ((unbounded || total < target) && !control.cancelled()) {
-    // The first round always runs: a population is never missing from the image, even when the
-    // bootstrap and the direct light took all the time.
-    if (deadline > 0.0 && total > 0 && elapsed() >= deadline) {
-      pop.time_limited = true;
-      break;
-    }
-    const double round_start = elapsed();
-    const uint64_t remaining = unbounded ? UINT64_MAX : target - total;
+  ChainRounds rounds(n_chains, target, deadline);
+  while (rounds.next(elapsed(), control)) {
     parallel_for_each_index(opt.threads, n_chains, [&](size_t c) {
-      // Chain c's share of this round: remaining mutations split evenly, the first ones take the rest.
-      const uint64_t share =
-          unbounded ? per_chain : std::min<uint64_t>(per_chain, remaining / n_chains + (c < remaining % n_chains));
+      const uint64_t share = rounds.share(c);
       Chain& chain = chains[c];
       auto evaluate = make();
       Contribution proposed;
@@ -301,15 +264,10 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
       }
       round += done[c];
     }
-    total += round;
-    if (control.cancelled() || round == 0) break;
-    // Rounds of about 0.25 s (the Ctrl-C and progress latency), shorter near the deadline.
-    const double now = elapsed();
-    const double per_mutation = std::max(now - round_start, 1e-6) / static_cast<double>(round);
-    const double round_seconds = deadline > 0.0 ? std::clamp(0.5 * (deadline - now), 0.001, 0.25) : 0.25;
-    per_chain = static_cast<uint64_t>(std::clamp(round_seconds / per_mutation / n_chains, 1.0, 1e6));
+    if (!rounds.finish(round, elapsed(), control)) break;
   }
-  pop.mutations = total;
+  pop.mutations = rounds.total();
+  pop.time_limited = rounds.time_limited();
   for (size_t c = 0; c < n_chains; ++c) {
     pop.accepted += accepted[c];
     pop.large_steps += large_f[c].n;
@@ -342,18 +300,10 @@ void add_population(MltStats& mlt, const Population& pop) {
 bool render_direct(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, MltResult& result,
                    std::vector<double>& image, RenderControl& control) {
   if (opt.direct_spp == 0) return false;
-  BdptOptions direct;
-  static_cast<EstimatorOptions&>(direct) = opt;
-  direct.spp = opt.direct_spp;
-  direct.time_limit = 0.0;
-  direct.max_depth = opt.max_depth < 0 ? 2 : std::min(opt.max_depth, 2);
-  direct.heuristic = opt.heuristic;
-  direct.seed = hash_combine(opt.seed, 0xd1ec7ull);
-  const RenderResult r = render_bdpt(scene, camera, direct, control);
+  const RenderResult r = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control);
   const std::vector<float> mean = r.film.mean();
   std::copy(mean.begin(), mean.end(), image.begin());
   result.direct = r.stats;
-  control.done.store(0);
   return control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2);
 }
 

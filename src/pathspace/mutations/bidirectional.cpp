@@ -112,9 +112,8 @@ bool BidirectionalMutation::propose(const MutationContext& ctx, const Path& x, P
     const Vertex& v = eye.back();
     Vec3 d;
     if (v.type == VertexType::Camera) {
-      const Point2 u = next_2d(rng);
-      const float w = static_cast<float>(ctx.camera.width()), h = static_cast<float>(ctx.camera.height());
-      d = ctx.camera.generate_ray(std::min(u.u * w, std::nextafter(w, 0.f)), std::min(u.v * h, std::nextafter(h, 0.f))).d;
+      const Point2 film = ctx.camera.film_position(next_2d(rng));
+      d = ctx.camera.generate_ray(film.u, film.v).d;
     } else if (!sample_scatter(v, direction(v, eye[eye.size() - 2]), TransportMode::Radiance, next_2d(rng), d)) {
       return false;
     }

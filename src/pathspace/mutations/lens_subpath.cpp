@@ -29,9 +29,8 @@ bool LensSubpathMutation::propose(const MutationContext& ctx, const Path& x, Pcg
   const int m = first_diffuse_from_eye(x);
   const int max_new = ctx.max_depth >= 0 ? ctx.max_depth - m : kUnboundedSpecularLimit;
   Path eye{x[k]};
-  const Point2 u = next_2d(rng);
-  const float w = static_cast<float>(ctx.camera.width()), h = static_cast<float>(ctx.camera.height());
-  Vec3 d = ctx.camera.generate_ray(std::min(u.u * w, std::nextafter(w, 0.f)), std::min(u.v * h, std::nextafter(h, 0.f))).d;
+  const Point2 film = ctx.camera.film_position(next_2d(rng));
+  Vec3 d = ctx.camera.generate_ray(film.u, film.v).d;
   for (;;) {
     if (static_cast<int>(eye.size()) - 1 >= max_new) return false;
     Vertex hit;
