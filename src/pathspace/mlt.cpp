@@ -216,7 +216,9 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
                            });
           if (chosen) evaluate(camera, chain.current);
         }
-        chains.push_back(std::move(chain));
+        // A chain without a start path would count mutations that splat nothing and darken
+        // the image; the others share its mutations.
+        if (chain.current.f.f_lum > 0.0) chains.push_back(std::move(chain));
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
     }
@@ -243,7 +245,6 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
           if ((m & 63u) == 0 && control.cancelled()) break;
           ++done[c];
           State& x = chain.current;
-          if (x.f.f_lum <= 0.0) continue;  // no start path: this chain only counts its mutations
           double select_x = 0.0;
           const size_t k = mutations.select(x.path, chain.rng.next_float(), select_x);
           MutationStats& stat = counts[c][k];
