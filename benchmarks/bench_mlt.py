@@ -1,16 +1,20 @@
 """Metropolis light transport against BDPT (issue 6): Veach's door figure and equal-time error
 of the path tracer, BDPT, PSSMLT, multiplexed MLT and path-space (Veach) MLT.
 
-The figure: on the door scene, BDPT at 40 spp (timed), then MLT given the same wall time
-(``time_limit``), side by side with the reference, each titled with its samples or mutations per
-pixel, seconds and relMSE, as Veach and Guibas's figure (BDPT 40 spp against MLT 250 mutations per
-pixel in the same time). Path-space MLT is ``method="mlt"``; where this build has no such method
+The figure: on the door scene, BDPT at 40 spp (timed), then path-space MLT given the same wall
+time (``time_limit``; its start-up then takes a share of it), with Veach's luminance target
+(``mlt``) and with the flattened importance (``mlt_flat``, ``mlt={"importance": "flattened"}``),
+side by side with the reference, each titled with its samples or mutations per pixel, seconds
+and relMSE (mean over ``--seeds``), as Veach and Guibas's figure (BDPT 40 spp against MLT 250
+mutations per pixel in the same time). Where this build has no path-space MLT
 (``dualight.render`` raises "unknown method") the script says so and shows PSSMLT, labelled so.
 
 The curves: every method renders every scene (``bench_bdpt``'s scenes and references: 64x64,
-``max_depth`` 8, relMSE with the reference's own noise removed) for a series of budgets.
-Each render gets its budget as ``time_limit``; a method that rejects ``time_limit`` (``mmlt``
-does: each path length gets its share of a mutation count) is calibrated instead: renders at
+``max_depth`` 8, relMSE with the reference's own noise removed) for a series of budgets,
+``--seeds`` times each (MLT errors vary much from seed to seed; the mean relMSE and seconds are
+plotted and compared).
+Each render gets its budget as ``time_limit``; a method that rejects ``time_limit`` is
+calibrated instead: renders at
 two ``mutations_per_pixel`` fit its fixed cost (direct light, bootstrap) and its mutations per
 second, and each budget gets the count expected to fill it. Either way the measured seconds,
 not the budget, are what is plotted and compared, so overshoot (e.g. an MLT's fixed cost
@@ -22,8 +26,8 @@ relMSE, spp or mutations per pixel, and the render's stats, e.g. acceptance rate
 ``bench_mlt.png`` (relMSE against seconds, one panel per scene) and ``bench_mlt_door.png`` (the
 figure). ``--quick`` writes the same files with a ``_quick`` suffix (git ignores them).
 
-    python benchmarks/bench_mlt.py            # budgets 0.5..8 s per render (several minutes)
-    python benchmarks/bench_mlt.py --quick    # budgets 0.25..1 s, a smoke run (about a minute)
+    python benchmarks/bench_mlt.py            # budgets 0.5..8 s, 3 seeds (about 15 minutes)
+    python benchmarks/bench_mlt.py --quick    # budgets 0.25..1 s, 1 seed: a smoke run
     python benchmarks/bench_mlt.py --scenes door --methods bdpt,mlt --figure-spp 40
 """
 
@@ -51,14 +55,19 @@ from bench_bdpt import (  # noqa: E402
     efficiency_ratios,
     errors,
     load_reference,
-    run_dualight,
 )
 
-METHODS = ("path", "bdpt", "pssmlt", "mmlt", "mlt")
-MLT_METHODS = ("pssmlt", "mmlt", "mlt")
+METHODS = ("path", "bdpt", "pssmlt", "mmlt", "mlt", "mlt_flat")
+MLT_METHODS = ("pssmlt", "mmlt", "mlt", "mlt_flat")
+# Labels that are a method with options: path-space MLT with its flattened importance.
+VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
+    "mlt_flat": ("mlt", {"mlt": {"importance": "flattened"}}),
+}
 # (faster?, than) pairs whose equal-time efficiency ratio is reported.
 RATIOS = [
     ("mlt", "bdpt"),
+    ("mlt_flat", "bdpt"),
+    ("mlt_flat", "mlt"),
     ("pssmlt", "bdpt"),
     ("mmlt", "bdpt"),
     ("mlt", "pssmlt"),
@@ -76,11 +85,20 @@ class Unavailable(Exception):
     """The method does not exist in this build, or takes no budget this script can give."""
 
 
-def run_counted(scene: dualight.Scene, method: str, max_depth: int, seed: int, **count: int):
-    """A render with ``spp=`` or ``mutations_per_pixel=``, timed as ``run_dualight``."""
+def run_counted(scene: dualight.Scene, method: str, max_depth: int, seed: int, **count: Any):
+    """A render of ``method`` (or of a label in ``VARIANTS``) with ``spp=``,
+    ``mutations_per_pixel=`` or ``time_limit=``; returns the image, wall seconds and stats."""
+    real, options = VARIANTS.get(method, (method, {}))
     start = time.perf_counter()
-    image = dualight.render(scene, method, max_depth=max_depth, seed=seed, progress=False, **count)
+    image = dualight.render(
+        scene, real, max_depth=max_depth, seed=seed, progress=False, **options, **count
+    )
     return np.asarray(image), time.perf_counter() - start, image.stats
+
+
+def run_dualight(scene: dualight.Scene, method: str, budget: float, max_depth: int, seed: int):
+    """A render given ``budget`` seconds as ``time_limit``."""
+    return run_counted(scene, method, max_depth, seed, spp=None, time_limit=budget)
 
 
 def pixels_of(scene: dualight.Scene) -> int:
@@ -196,39 +214,67 @@ def prepare(name: str) -> tuple[str, dualight.Scene, np.ndarray, np.ndarray, dic
     return ref_name, scene, ref, ref_var, info
 
 
-def figure(spp: int, skipped: dict[str, str], suffix: str) -> dict[str, Any] | None:
-    """Veach's figure on the door scene: BDPT at ``spp`` against MLT in the same wall time."""
+def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[str, Any] | None:
+    """Veach's figure on the door scene: BDPT at ``spp`` against MLT (Veach's luminance target,
+    and the flattened importance) in the same wall time, each seed's MLT given the time that
+    seed's BDPT took. relMSE is the mean over ``seeds``; the images are the first seed's."""
     ref_name, scene, ref, ref_var, info = prepare(FIGURE_SCENE)
     max_depth = int(info["max_depth"])
     full = np.ones(ref.shape[:2], dtype=bool)
-    img_b, secs_b, stats_b = run_counted(scene, "bdpt", max_depth, seed=40, spp=spp)
-    bdpt = {**record(scene, "bdpt", secs_b, stats_b), **errors(img_b, ref, ref_var, full)}
-    mlt = None
-    for method in ("mlt", "pssmlt"):
-        if method in skipped:
-            continue
-        try:
-            img_m, secs_m, stats_m, how = render_budget(scene, method, secs_b, max_depth, 41, {})
-        except Unavailable as err:
-            skipped[method] = str(err)
-            print(f"figure: no {method!r} in this build ({err}); showing the next MLT instead")
-            continue
-        mlt = {**record(scene, method, secs_m, stats_m), **how, **errors(img_m, ref, ref_var, full)}
-        break
-    if mlt is None:
+    entries: dict[str, list[dict[str, Any]]] = {}
+    images: dict[str, np.ndarray] = {}
+    for k in range(seeds):
+        img_b, secs_b, stats_b = run_counted(scene, "bdpt", max_depth, seed=40 + k, spp=spp)
+        row = {**record(scene, "bdpt", secs_b, stats_b), **errors(img_b, ref, ref_var, full)}
+        entries.setdefault("bdpt", []).append(row)
+        images.setdefault("bdpt", img_b)
+        for method in ("mlt", "mlt_flat", "pssmlt"):
+            if method in skipped or (method == "pssmlt" and "mlt" in entries):
+                continue
+            try:
+                img_m, secs_m, stats_m, how = render_budget(
+                    scene, method, secs_b, max_depth, 41 + k, {}
+                )
+            except Unavailable as err:
+                skipped[method] = str(err)
+                print(f"figure: no {method!r} in this build ({err})")
+                continue
+            row = {**record(scene, method, secs_m, stats_m), **how}
+            row.update(errors(img_m, ref, ref_var, full))
+            entries.setdefault(method, []).append(row)
+            images.setdefault(method, img_m)
+    if len(entries) < 2:
         print("figure: no MLT method available; skipped")
         return None
-    for r in (bdpt, mlt):
-        r.pop("relmse_lt_pixels")
-    note = "" if mlt["method"] == "mlt" else " (path-space MLT not available)"
-    # An MLT's fixed cost (direct light, bootstrap) can take all of BDPT's time.
-    starved = "no mutation: its fixed cost took the whole time" if mlt["mpp"] == 0 else ""
-    print(
-        f"figure ({FIGURE_SCENE}): BDPT {count_label(bdpt)} in {bdpt['seconds']:.2f} s, "
-        f"relMSE {bdpt['relmse']:.3e}; {mlt['method']}{note} {count_label(mlt)} "
-        f"in {mlt['seconds']:.2f} s, relMSE {mlt['relmse']:.3e}"
-        + (f"; {starved}" if starved else "")
+    summary: dict[str, Any] = {"scene": FIGURE_SCENE, "reference": ref_name, "seeds": seeds}
+    for method, rows in entries.items():
+        for r in rows:
+            r.pop("relmse_lt_pixels", None)
+        rel = np.array([r["relmse"] for r in rows])
+        summary[method] = {
+            "runs": rows,
+            "seconds": float(np.mean([r["seconds"] for r in rows])),
+            "relmse": float(rel.mean()),
+            "relmse_stderr": float(rel.std(ddof=1) / np.sqrt(len(rel))) if len(rel) > 1 else None,
+            "count": count_label(
+                {"spp": rows[0]["spp"]}
+                if "spp" in rows[0]
+                else {"mpp": float(np.mean([r["mpp"] for r in rows]))}
+            ),
+        }
+    bdpt = summary["bdpt"]
+    line = (
+        f"figure ({FIGURE_SCENE}, {seeds} seeds): BDPT {bdpt['count']} in "
+        f"{bdpt['seconds']:.2f} s, relMSE {bdpt['relmse']:.3e}"
     )
+    for method in entries:
+        if method != "bdpt":
+            m = summary[method]
+            line += (
+                f"; {method} {m['count']} in {m['seconds']:.2f} s, relMSE {m['relmse']:.3e} "
+                f"(BDPT / {method}: x{bdpt['relmse'] / m['relmse']:.2f})"
+            )
+    print(line)
 
     import matplotlib
 
@@ -238,36 +284,37 @@ def figure(spp: int, skipped: dict[str, str], suffix: str) -> dict[str, Any] | N
     # One exposure for all panels: the reference's 99th percentile luminance maps to white.
     y99 = float(np.percentile(dualight.Image(ref).luminance(), 99))
     exposure = -float(np.log2(y99)) if y99 > 0 else 0.0
+    titles = {
+        "bdpt": "BDPT",
+        "mlt": "MLT (luminance)",
+        "mlt_flat": "MLT (flattened)",
+        "pssmlt": "PSSMLT (no path-space MLT)",
+    }
     panels = [
-        (img_b, f"BDPT, {count_label(bdpt)}\n{bdpt['seconds']:.2f} s, relMSE {bdpt['relmse']:.3g}"),
         (
-            img_m,
-            f"{mlt['method'].upper()}{note}, {count_label(mlt)}\n"
-            f"{mlt['seconds']:.2f} s, relMSE {mlt['relmse']:.3g}"
-            + (f"\n{starved}" if starved else ""),
-        ),
-        (ref, f"reference (Mitsuba path, {info.get('spp')} spp)\n{ref_name}"),
+            images[m],
+            f"{titles[m]}, {summary[m]['count']}\n{summary[m]['seconds']:.2f} s, "
+            f"relMSE {summary[m]['relmse']:.3g}",
+        )
+        for m in entries
     ]
-    fig, axes = plt.subplots(1, 3, figsize=(12, 4.8), layout="constrained")
+    panels.append((ref, f"reference (Mitsuba path, {info.get('spp')} spp)\n{ref_name}"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(4 * len(panels), 4.8), layout="constrained")
     for ax, (img, title) in zip(axes, panels, strict=True):
         ax.imshow(dualight.Image(img).tonemap(exposure), interpolation="nearest")
         ax.set_title(title, fontsize=9)
         ax.axis("off")
     fig.suptitle(
-        f"Veach's door at equal time: {ref.shape[1]}x{ref.shape[0]}, max_depth {max_depth}"
+        f"Veach's door at equal time: {ref.shape[1]}x{ref.shape[0]}, max_depth {max_depth}; "
+        f"relMSE: mean of {seeds} seeds"
     )
     path = RESULTS / f"bench_mlt_{FIGURE_SCENE}{suffix}.png"
     RESULTS.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     print(f"wrote {path}")
-    return {
-        "scene": FIGURE_SCENE,
-        "reference": ref_name,
-        "exposure": exposure,
-        "bdpt": bdpt,
-        "mlt": mlt,
-    }
+    summary["exposure"] = exposure
+    return summary
 
 
 def plot(summary: dict[str, Any], path: Path) -> None:
@@ -282,7 +329,7 @@ def plot(summary: dict[str, Any], path: Path) -> None:
     colours = {m: f"C{i}" for i, m in enumerate(METHODS)}
     fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 4.2), squeeze=False)
     for ax, name in zip(axes[0], names, strict=True):
-        runs = summary["scenes"][name]["runs"]
+        runs = summary["scenes"][name]["curves"]
         for method in METHODS:
             rs = sorted((r for r in runs if r["method"] == method), key=lambda r: r["seconds"])
             if not rs:
@@ -297,7 +344,7 @@ def plot(summary: dict[str, Any], path: Path) -> None:
             )
         ax.set_title(f"{name} 64x64, max_depth {summary['scenes'][name]['max_depth']}")
         ax.set_xlabel("render time (s)")
-        ax.set_ylabel("relMSE (reference noise removed)")
+        ax.set_ylabel(f"relMSE (reference noise removed; mean of {summary['seeds']} seeds)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
@@ -311,10 +358,11 @@ def main() -> None:
     parser.add_argument("--scenes", type=str, default=",".join(SCENES))
     parser.add_argument("--methods", type=str, default=",".join(METHODS))
     parser.add_argument("--figure-spp", type=int, default=40, help="BDPT's spp in the figure")
+    parser.add_argument("--seeds", type=int, default=3, help="renders per method and budget")
     parser.add_argument("--quick", action="store_true", help="budgets 0.25,0.5,1; *_quick files")
     args = parser.parse_args()
     if args.quick:
-        args.budgets = "0.25,0.5,1"
+        args.budgets, args.seeds = "0.25,0.5,1", 1
     budgets = [float(b) for b in args.budgets.split(",")]
     methods = [m for m in args.methods.split(",") if m]
     unknown = set(methods) - set(METHODS) | set(args.scenes.split(",")) - set(SCENES)
@@ -327,9 +375,10 @@ def main() -> None:
     summary: dict[str, Any] = {
         "environment": environment(),
         "budgets_seconds": budgets,
+        "seeds": args.seeds,
         "methods": methods,
         "skipped_methods": skipped,
-        "figure": figure(args.figure_spp, skipped, suffix),
+        "figure": figure(args.figure_spp, skipped, suffix, args.seeds),
         "scenes": {},
     }
     for name in args.scenes.split(","):
@@ -339,36 +388,59 @@ def main() -> None:
         calibrations: dict[str, dict[str, Any]] = {}
         runs: list[dict[str, Any]] = []
         print(f"{name}:")
+        curves: list[dict[str, Any]] = []
         for method in methods:
             if method in skipped:
                 continue
             for i, budget in enumerate(budgets):
-                try:
-                    img, secs, stats, how = render_budget(
-                        scene, method, budget, max_depth, 100 + i, calibrations
-                    )
-                except Unavailable as err:
-                    skipped[method] = str(err)
-                    print(f"  skipping {method!r}: not available in this build ({err})")
+                rows = []
+                for k in range(args.seeds):
+                    try:
+                        img, secs, stats, how = render_budget(
+                            scene, method, budget, max_depth, 100 + i + 1000 * k, calibrations
+                        )
+                    except Unavailable as err:
+                        skipped[method] = str(err)
+                        print(f"  skipping {method!r}: not available in this build ({err})")
+                        break
+                    r = {"budget": budget, "seed_index": k, **how}
+                    r.update(record(scene, method, secs, stats))
+                    r.update(errors(img, ref, ref_var, full))
+                    r.pop("relmse_lt_pixels")  # the whole image here: the same as relmse
+                    r["efficiency"] = 1.0 / (r["relmse"] * r["seconds"])
+                    runs.append(r)
+                    rows.append(r)
+                if method in skipped:
                     break
-                r = {"budget": budget, **how, **record(scene, method, secs, stats)}
-                r.update(errors(img, ref, ref_var, full))
-                r.pop("relmse_lt_pixels")  # the whole image here: the same as relmse
-                r["efficiency"] = 1.0 / (r["relmse"] * r["seconds"])
-                runs.append(r)
-                st = r["stats"]
+                rel = np.array([r["relmse"] for r in rows])
+                curve = {
+                    "method": method,
+                    "budget": budget,
+                    "budget_by": rows[0]["budget_by"],
+                    "seeds": len(rows),
+                    "seconds": float(np.mean([r["seconds"] for r in rows])),
+                    "relmse": float(rel.mean()),
+                    "relmse_stderr": (
+                        float(rel.std(ddof=1) / np.sqrt(len(rel))) if len(rel) > 1 else None
+                    ),
+                }
+                curve["efficiency"] = 1.0 / (curve["relmse"] * curve["seconds"])
+                curves.append(curve)
+                st = rows[0]["stats"]
                 extra = (
                     f" acc {st['acceptance_rate']:.2f} b {st['b']:.4g}"
                     if "acceptance_rate" in st and "b" in st
                     else ""
                 )
+                spread = "" if len(rows) < 2 else f" +- {curve['relmse_stderr']:.1e}"
                 print(
-                    f"  {method:>7} {budget:5.2f} s -> {secs:6.2f} s {count_label(r):>24} "
-                    f"relMSE {r['relmse']:.3e} (raw {r['relmse_raw']:.3e}, "
-                    f"floor {r['reference_floor']:.1e}){extra}"
+                    f"  {method:>8} {budget:5.2f} s -> {curve['seconds']:6.2f} s "
+                    f"{count_label(rows[0]):>24} relMSE {curve['relmse']:.3e}{spread} "
+                    f"({len(rows)} seeds){extra}",
+                    flush=True,
                 )
 
-        top = {r["method"]: r for r in runs if r["budget"] == max(budgets)}
+        top = {c["method"]: c for c in curves if c["budget"] == max(budgets)}
         ratios = efficiency_ratios(top, RATIOS)
         summary["scenes"][name] = {
             "reference": ref_name,
@@ -376,6 +448,7 @@ def main() -> None:
             "max_depth": max_depth,
             "calibrations": calibrations,
             "runs": runs,
+            "curves": curves,
             "equal_time_efficiency_ratios_at_budget": max(budgets),
             "equal_time_efficiency_ratios": ratios,
         }

@@ -4,12 +4,15 @@ Mitsuba reference is tested with the other MLT methods in test_pssmlt.py."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import dualight
 from dualight import _core, scenes
 
+REFERENCES = Path(__file__).parent / "references"
 SCENES = {
     "cornell": lambda: scenes.cornell_box(resolution=(32, 32)),
     "caustics": lambda: scenes.cornell_box(resolution=(32, 32), variant="caustics"),
@@ -62,7 +65,11 @@ def test_bidirectional_mutation_keeps_the_colour_of_paths_of_three_segments() ->
     sums = []
     for seed in range(4):
         options = _core.MltOptions(
-            mutations_per_pixel=64, max_depth=3, seed=seed, chains=1024, lens_subpath=0.0,
+            mutations_per_pixel=64,
+            max_depth=3,
+            seed=seed,
+            chains=1024,
+            lens_subpath=0.0,
             lens_perturbation=0.0,
         )
         out = _core.render_mlt(scene._compile(), scene.camera._compile(), options, None)
@@ -86,7 +93,10 @@ def test_mlt_is_deterministic_and_reports_each_mutation() -> None:
     np.testing.assert_array_equal(np.asarray(one), np.asarray(two))
     types = one.stats["mutation_types"]
     assert set(types) == {
-        "bidirectional", "lens_subpath", "lens_perturbation", "caustic_perturbation",
+        "bidirectional",
+        "lens_subpath",
+        "lens_perturbation",
+        "caustic_perturbation",
         "multi_chain_perturbation",
     }
     assert sum(t["proposed"] for t in types.values()) == one.stats["mutations"] == 16 * 16 * 8
@@ -96,3 +106,32 @@ def test_mlt_is_deterministic_and_reports_each_mutation() -> None:
     assert one.stats["b"] > 0 and one.stats["b_ci95"] > 0
     with pytest.raises(ValueError, match="bidirectional"):
         dualight.render(scene, "mlt", mlt={"bidirectional": 0.0}, **kw)
+
+
+@pytest.mark.parametrize("importance", ["luminance", "flattened"])
+def test_a_short_time_limit_leaves_most_of_its_time_to_the_chains(importance: str) -> None:
+    """Under a time limit the direct light, the pilot (flattened importance) and the bootstrap
+    each take at most a share of it (10 %, 5 %, 10 %): at 0.4 s on the door the defaults (128
+    spp of direct light, 100,000 bootstrap samples) used to take all of it. The start-up is
+    then smaller than the defaults, the chains still run, and the brightness (b's estimate
+    plus the direct light) agrees with the reference within b's interval."""
+    scene = scenes.door_ajar(resolution=(64, 64))
+    image = dualight.render(
+        scene,
+        "mlt",
+        spp=None,
+        time_limit=0.4,
+        max_depth=8,
+        seed=9,
+        progress=False,
+        mlt={"importance": importance},
+    )
+    s = image.stats
+    assert s["time_limited"] and s["importance"] == importance
+    assert 8192 <= s["b_samples"] < 100000 and 1 <= s["direct_spp"] < 128
+    assert (s["pilot_samples"] > 0) == (importance == "flattened") and s["pilot_samples"] < 25000
+    assert s["mutations"] >= 4 * 256
+    if importance == "luminance":  # flattened: the image is not b's estimate (test_pssmlt.py)
+        ref = np.asarray(dualight.Image.load(REFERENCES / "door_64_mean.exr"))
+        sigma = s["b_ci95"] / 1.96 / s["b"]
+        assert abs(float(np.mean(image)) / float(ref.mean()) - 1.0) < 4.0 * sigma

@@ -134,7 +134,11 @@ def render(
         (0.25), ``lens_perturbation``, ``caustic_perturbation``,
         ``multi_chain_perturbation`` (1 each; 0 disables); ``lens_radius_min`` (0.1 pixel),
         ``lens_radius_max`` (0: a tenth of the film width), ``angle_min`` (1e-4 rad),
-        ``angle_max`` (0.1 rad).
+        ``angle_max`` (0.1 rad); ``importance``: the chains' target, ``"luminance"`` (Veach's
+        image luminance, the default) or ``"flattened"`` (luminance over the square root of a
+        smoothed pilot estimate of the pixel's brightness: mutations spread towards dark
+        pixels, lower relMSE where brightness varies a lot, as on the door; costs
+        ``bootstrap / 4`` more BDPT samples).
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,

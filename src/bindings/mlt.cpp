@@ -3,6 +3,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <string>
+
 #include "bindings/interruptible.h"
 #include "bindings/render_result.h"
 #include "pathspace/mlt.h"
@@ -15,7 +17,7 @@ void bind_mlt(py::module_& m) {
                        double time_limit, uint32_t bootstrap, uint32_t chains, MisHeuristic heuristic,
                        uint32_t direct_spp, float bidirectional, float lens_subpath, float lens_perturbation,
                        float caustic_perturbation, float multi_chain_perturbation, float lens_radius_min,
-                       float lens_radius_max, float angle_min, float angle_max) {
+                       float lens_radius_max, float angle_min, float angle_max, const std::string& importance) {
              check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
              if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
              if (chains < 1) throw py::value_error("chains must be >= 1");
@@ -33,7 +35,11 @@ void bind_mlt(py::module_& m) {
              if (!(angle_min > 0.f && angle_max > angle_min && angle_max < 3.14159f)) {
                throw py::value_error("need 0 < angle_min < angle_max < pi (radians)");
              }
+             if (importance != "luminance" && importance != "flattened") {
+               throw py::value_error("importance must be 'luminance' or 'flattened', not '" + importance + "'");
+             }
              MltOptions o;
+             o.importance = importance == "flattened" ? MltImportance::Flattened : MltImportance::Luminance;
              static_cast<EstimatorOptions&>(o) = {mutations_per_pixel, max_depth, rr_depth, seed, threads,
                                                   time_limit, SamplerType::Independent};
              o.bootstrap = bootstrap;
@@ -57,7 +63,7 @@ void bind_mlt(py::module_& m) {
            py::arg("bidirectional") = 1.f, py::arg("lens_subpath") = 0.25f, py::arg("lens_perturbation") = 1.f,
            py::arg("caustic_perturbation") = 1.f, py::arg("multi_chain_perturbation") = 1.f,
            py::arg("lens_radius_min") = 0.1f, py::arg("lens_radius_max") = 0.f, py::arg("angle_min") = 1e-4f,
-           py::arg("angle_max") = 0.1f);
+           py::arg("angle_max") = 0.1f, py::arg("importance") = "luminance");
 
   m.def(
       "render_mlt",
@@ -81,6 +87,7 @@ void bind_mlt(py::module_& m) {
         }
         py::dict stats = d["stats"];
         stats["mutation_types"] = per_mutation;
+        stats["importance"] = options.importance == MltImportance::Flattened ? "flattened" : "luminance";
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),

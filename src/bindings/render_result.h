@@ -75,7 +75,8 @@ inline py::dict mlt_result_dict(MltResult&& r, int width, int height, uint32_t d
   stats["mutations"] = s.mutations;
   stats["acceptance_rate"] = s.mutations > 0 ? static_cast<double>(s.accepted) / s.mutations : 0.0;
   stats["zero_proposals"] = s.zero_proposals;
-  stats["direct_spp"] = direct_spp;
+  stats["pilot_samples"] = s.pilot_samples;
+  stats["direct_spp"] = direct_spp > 0 ? r.direct.spp : 0u;  // fewer than asked when time-limited
   stats["direct_seconds"] = r.direct.seconds;
   stats["rays"] = r.stats.rays + r.direct.rays;
   d["stats"] = stats;

@@ -8,12 +8,14 @@
 
 namespace dualight {
 
+// At most `spp` samples per pixel; with time_limit > 0 (seconds), fewer if that runs out first.
 inline RenderResult render_direct_light(const Scene& scene, const PinholeCamera& camera, const EstimatorOptions& base,
-                                        uint32_t spp, MisHeuristic heuristic, RenderControl& control) {
+                                        uint32_t spp, MisHeuristic heuristic, RenderControl& control,
+                                        double time_limit = 0.0) {
   BdptOptions direct;
   static_cast<EstimatorOptions&>(direct) = base;
   direct.spp = spp;
-  direct.time_limit = 0.0;
+  direct.time_limit = time_limit;
   direct.max_depth = base.max_depth < 0 ? 2 : std::min(base.max_depth, 2);
   direct.heuristic = heuristic;
   direct.seed = hash_combine(base.seed, 0xd1ec7ull);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <atomic>
 #include <memory>
+#include <utility>
 
 #include "core/distribution.h"
 #include "core/mean_estimate.h"
@@ -23,21 +25,28 @@ namespace {
 
 constexpr uint64_t kBootstrapStream = 0x7a3d'19c0'e5b2'4f61ull;
 constexpr uint64_t kChainStream = 0x0b8e'c2f4'6d17'a935ull;
+constexpr uint64_t kPilotStream = 0x5c61'e08d'3a9f'b247ull;
 
-// A chain's state: the path, its contribution and the pixel it lands in.
+uint32_t pixel_of(const PinholeCamera& camera, const Point2& raster) {
+  const uint32_t x = std::min(static_cast<uint32_t>(std::max(raster.u, 0.f)), static_cast<uint32_t>(camera.width() - 1));
+  const uint32_t y = std::min(static_cast<uint32_t>(std::max(raster.v, 0.f)), static_cast<uint32_t>(camera.height() - 1));
+  return y * camera.width() + x;
+}
+
+// A chain's state: the path, its contribution, the pixel it lands in and its target value f*.
 struct State {
   Path path;
   PathValue f;
   uint32_t pixel = 0;
+  double target = 0.0;  // f_lum times the pixel's importance factor
 };
 
-bool evaluate(const PinholeCamera& camera, State& s) {
+bool evaluate(const PinholeCamera& camera, const PixelImportance& importance, State& s) {
   Point2 raster{};
   s.f = path_contribution(camera, s.path, raster);
-  const uint32_t x = std::min(static_cast<uint32_t>(raster.u), static_cast<uint32_t>(camera.width() - 1));
-  const uint32_t y = std::min(static_cast<uint32_t>(raster.v), static_cast<uint32_t>(camera.height() - 1));
-  s.pixel = y * camera.width() + x;
-  return s.f.f_lum > 0.0;
+  s.pixel = pixel_of(camera, raster);
+  s.target = s.f.f_lum * importance(s.pixel);
+  return s.target > 0.0;
 }
 
 BdptOptions bootstrap_bdpt(const MltOptions& opt) {
@@ -50,8 +59,9 @@ BdptOptions bootstrap_bdpt(const MltOptions& opt) {
 }
 
 // One BDPT sample of the bootstrap (a uniform film position, every strategy); calls
-// visit(s, t, unweighted, mis weight, sampled) for each strategy that carries light. Values of
-// strategies with t >= 2 are scaled by the pixel count: they estimate the whole film's integral.
+// visit(s, t, unweighted, mis weight, sampled, raster) for each strategy that carries light.
+// Values of strategies with t >= 2 are scaled by the pixel count: they estimate the whole
+// film's integral.
 template <class Visit>
 void bootstrap_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt, uint64_t seed,
                       uint64_t index, Subpaths& paths, TraceCounters& counters, const Visit& visit) {
@@ -62,10 +72,10 @@ void bootstrap_sample(const Scene& scene, const PinholeCamera& camera, const Bdp
   light_subpath(scene, sampler, limits, paths.light, counters);
   const float pixels = static_cast<float>(camera.width()) * static_cast<float>(camera.height());
   for_each_strategy(scene, camera, bdpt, paths, sampler, counters,
-                    [&](int s, int t, Color c, const Vertex& sampled, const Point2&) {
+                    [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
                       if (t >= 2) c *= pixels;
                       visit(s, t, c, mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, bdpt.heuristic),
-                            sampled);
+                            sampled, t == 1 ? raster : film);
                     });
 }
 
@@ -89,6 +99,77 @@ Path strategy_path(const Subpaths& paths, const Vertex& sampled, int s, int t) {
 double weight_of(const Color& c, float mis) {
   const double w = static_cast<double>(std::max(0.f, luminance(c))) * mis;
   return std::isfinite(w) ? w : 0.0;
+}
+
+// Start-up under a time limit: the direct light, the pilot and the bootstrap each get at most a
+// share of it, so that a short budget still leaves most of its time to the chains (at 0.4 s
+// on the door, the default 128 spp of direct light and 100,000 bootstrap samples took it all).
+constexpr double kDirectShare = 0.1, kPilotShare = 0.05, kBootstrapShare = 0.1;
+constexpr size_t kSampleBlock = 1024, kBlocksPerWave = 8;
+
+// Runs block(b, begin, end) over the samples [0, count) in blocks of kSampleBlock, in waves of
+// kBlocksPerWave blocks (parallel within a wave); with seconds > 0, stops after the wave that
+// ends past `seconds` from now (at least `min_count` samples). Returns the samples done: a
+// prefix of the stream, so the result depends on timing only through its length.
+template <class Elapsed, class Block>
+size_t run_sample_blocks(int threads, size_t count, size_t min_count, double seconds, const Elapsed& elapsed,
+                         const RenderControl& control, const Block& block) {
+  const double deadline = elapsed() + seconds;
+  const size_t blocks = (count + kSampleBlock - 1) / kSampleBlock;
+  size_t done = 0;
+  for (size_t first = 0; first < blocks && !control.cancelled(); first += kBlocksPerWave) {
+    const size_t last = std::min(blocks, first + kBlocksPerWave);
+    parallel_for_each_index(threads, last - first, [&](size_t i) {
+      const size_t b = first + i;
+      block(b, b * kSampleBlock, std::min(count, (b + 1) * kSampleBlock));
+    });
+    done = std::min(count, last * kSampleBlock);
+    if (seconds > 0.0 && done >= min_count && elapsed() >= deadline) break;
+  }
+  return done;
+}
+
+// The importance factor of each pixel for MltImportance::Flattened: the direct light plus a pilot
+// estimate of the chains' part from `count` BDPT samples of their own stream (independent of
+// the bootstrap, so that b stays unbiased), merged in block order (deterministic).
+template <class Elapsed>
+PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt,
+                                 const MltOptions& opt, const std::vector<double>& direct, size_t wanted,
+                                 double seconds, const Elapsed& elapsed, const RenderControl& control,
+                                 std::atomic<uint64_t>& rays, size_t& count) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  const uint64_t seed = hash_combine(opt.seed, kPilotStream);
+  std::vector<std::vector<std::pair<uint32_t, double>>> blocks((wanted + kSampleBlock - 1) / kSampleBlock);
+  count = run_sample_blocks(opt.threads, wanted, std::min(wanted, 2 * kSampleBlock), seconds, elapsed, control,
+                            [&](size_t block, size_t begin, size_t end) {
+                              Subpaths paths;
+                              TraceCounters counters;
+                              for (size_t i = begin; i < end; ++i) {
+                                bootstrap_sample(scene, camera, bdpt, seed, i, paths, counters,
+                                                 [&](int, int, const Color& c, float mis, const Vertex&,
+                                                     const Point2& raster) {
+                                                   blocks[block].emplace_back(pixel_of(camera, raster),
+                                                                              weight_of(c, mis));
+                                                 });
+                              }
+                              rays.fetch_add(counters.rays, std::memory_order_relaxed);
+                            });
+  // Per pixel: the direct light's luminance plus the pilot's (sum over samples landing there,
+  // over the sample count: the chains' image has the same units, its luminance summing to b).
+  std::vector<double> lum(pixels, 0.0);
+  for (size_t p = 0; p < pixels; ++p) {
+    lum[p] = direct.empty() ? 0.0
+                            : std::max(0.0, static_cast<double>(luminance(
+                                                Color{static_cast<float>(direct[3 * p]), static_cast<float>(direct[3 * p + 1]),
+                                                      static_cast<float>(direct[3 * p + 2])})));
+  }
+  const double inv = 1.0 / static_cast<double>(std::max<size_t>(count, 1));  // blocks past count are empty
+  for (const auto& block : blocks) {
+    for (const auto& [pixel, w] : block) lum[pixel] += w * inv;
+  }
+  // A 5x5 box (radius 2) smooths the pilot's noise (about bootstrap / 4 / pixels samples each);
+  // the floor of 1 % of the mean keeps pixels the pilot missed reachable at finite cost.
+  return PixelImportance(lum, camera.width(), camera.height(), 2, 0.01);
 }
 
 // The mutations and their selection weights; a path picks among those that suit it.
@@ -162,7 +243,8 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   for (size_t i = 0; i < mutations.size(); ++i) out.mutations.push_back({mutations[i].name(), 0, 0, 0});
   std::atomic<uint64_t> rays{0};
   if (opt.direct_spp > 0) {
-    const RenderResult direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control);
+    const RenderResult direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control,
+                                                    kDirectShare * opt.time_limit);
     const std::vector<float> mean = direct.film.mean();
     std::copy(mean.begin(), mean.end(), image.begin());
     result.direct = direct.stats;
@@ -173,19 +255,29 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
   std::vector<Chain> chains;
   uint64_t total = 0;
+  PixelImportance importance;
+  if (!direct_only && opt.importance == MltImportance::Flattened && !control.cancelled()) {
+    importance = pixel_importance(scene, camera, bdpt, opt, opt.direct_spp > 0 ? image : std::vector<double>{},
+                                  std::max<size_t>(n_boot / 4, 1), kPilotShare * opt.time_limit, elapsed, control,
+                                  rays, mlt.pilot_samples);
+  }
   if (!direct_only && !control.cancelled()) {
     // Bootstrap: each sample's total weight (the sum over its strategies estimates b).
     std::vector<double> weight(n_boot, 0.0);
-    parallel_for_each_index(opt.threads, (n_boot + 1023) / 1024, [&](size_t block) {
-      if (control.cancelled()) return;
+    const size_t n_done = run_sample_blocks(
+        opt.threads, n_boot, std::min(n_boot, 8 * kSampleBlock), kBootstrapShare * opt.time_limit, elapsed, control,
+        [&](size_t, size_t begin, size_t end) {
       Subpaths paths;
       TraceCounters counters;
-      for (size_t i = block * 1024; i < std::min(n_boot, (block + 1) * 1024); ++i) {
+      for (size_t i = begin; i < end; ++i) {
         bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
-                         [&](int, int, const Color& c, float mis, const Vertex&) { weight[i] += weight_of(c, mis); });
+                         [&](int, int, const Color& c, float mis, const Vertex&, const Point2& raster) {
+                           weight[i] += weight_of(c, mis) * importance(pixel_of(camera, raster));
+                         });
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
-    });
+        });
+    weight.resize(n_done);
     const MeanEstimate b = estimate_of(weight);
     mlt.b = mlt.b_splatted = b.mean();
     mlt.b_ci95 = 1.96 * std::sqrt(b.variance_of_mean());
@@ -199,14 +291,15 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
       TraceCounters counters;
       for (size_t c = 0; c < n_chains; ++c) {
         Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), c), {}};
-        for (int attempt = 0; attempt < 16 && chain.current.f.f_lum <= 0.0; ++attempt) {
+        for (int attempt = 0; attempt < 16 && chain.current.target <= 0.0; ++attempt) {
           float u_pick = chain.rng.next_float();
           const size_t i = pick.sample(u_pick);
           double target_w = chain.rng.next_float() * weight[i];
           bool chosen = false;
           bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
-                           [&](int s, int t, const Color& col, float mis, const Vertex& sampled) {
-                             const double w = weight_of(col, mis);
+                           [&](int s, int t, const Color& col, float mis, const Vertex& sampled,
+                               const Point2& raster) {
+                             const double w = weight_of(col, mis) * importance(pixel_of(camera, raster));
                              if (chosen || w <= 0.0) return;
                              if (target_w < w) {
                                chain.current.path = strategy_path(paths, sampled, s, t);
@@ -214,11 +307,11 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
                              }
                              target_w -= w;
                            });
-          if (chosen) evaluate(camera, chain.current);
+          if (chosen) evaluate(camera, importance, chain.current);
         }
         // A chain without a start path would count mutations that splat nothing and darken
         // the image; the others share its mutations.
-        if (chain.current.f.f_lum > 0.0) chains.push_back(std::move(chain));
+        if (chain.current.target > 0.0) chains.push_back(std::move(chain));
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
     }
@@ -251,17 +344,18 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
           ++stat.proposed;
           Transition t;
           float a = 0.f;
-          if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) && evaluate(camera, proposed) &&
-              t.forward > 0.0) {
+          if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
+              evaluate(camera, importance, proposed) && t.forward > 0.0) {
             const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-            const double ratio = (proposed.f.f_lum * t.reverse * select_y) / (x.f.f_lum * t.forward * select_x);
+            const double ratio = (proposed.target * t.reverse * select_y) / (x.target * t.forward * select_x);
             a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
           } else {
             ++stat.failed;
           }
-          // Expected values: each state's f / f* times b, weighted by its acceptance odds.
-          if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a));
-          if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a)));
+          // Expected values: each state's f / f* times b, weighted by its acceptance odds (f.color
+          // is f / f_lum; f* = f_lum times the pixel's factor).
+          if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a / importance(proposed.pixel)));
+          if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a) / importance(x.pixel)));
           if (a > 0.f && chain.rng.next_float() < a) {
             std::swap(x, proposed);
             ++stat.accepted;
@@ -316,7 +410,7 @@ std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const Pinho
   TraceCounters counters;
   for (size_t i = 0; i < count; ++i) {
     bootstrap_sample(scene, camera, bdpt, opt.seed, i, paths, counters,
-                     [&](int s, int t, const Color& c, float, const Vertex& sampled) {
+                     [&](int s, int t, const Color& c, float, const Vertex& sampled, const Point2&) {
                        const Path z = strategy_path(paths, sampled, s, t);
                        Point2 raster{};
                        const PathValue f = path_contribution(camera, z, raster);

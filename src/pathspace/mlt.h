@@ -18,6 +18,7 @@
 
 #include "pathspace/estimator_options.h"
 #include "pathspace/mis_weight.h"
+#include "pathspace/mlt_importance.h"
 #include "pathspace/mlt_result.h"
 #include "core/render_control.h"
 #include "geometry/scene.h"
@@ -39,6 +40,10 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   // width), and angular offsets of the caustic and multi-chain perturbations, in radians.
   float lens_radius_min = 0.1f, lens_radius_max = 0.f;
   float angle_min = 1e-4f, angle_max = 0.1f;
+  // The chains' target f*: image luminance (Veach), or luminance divided by the square root of a
+  // smoothed estimate of the pixel's brightness (mlt_importance.h), from the direct light and
+  // `bootstrap` / 4 pilot BDPT samples of their own.
+  MltImportance importance = MltImportance::Luminance;
 };
 
 struct MutationStats {

@@ -21,6 +21,7 @@ struct MltStats {
   uint64_t independent_samples = 0;
   uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0;
   uint64_t zero_proposals = 0;  // proposals with f = 0 (rejected)
+  uint64_t pilot_samples = 0;   // path-space MLT with flattened importance: the pilot's BDPT samples
 };
 
 struct MltResult {

@@ -98,10 +98,12 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     }
     if (control.cancelled()) break;
     spp_done += count;
-    // Aim for passes of about a quarter second so time limits and progress stay responsive.
+    // Aim for passes of about a quarter second so time limits and progress stay responsive, and
+    // at most half the time left under a time limit, so that the last pass overshoots little.
     const double pass_seconds = std::max(elapsed() - pass_start, 1e-6);
     const double per_spp = pass_seconds / count;
-    pass_spp = static_cast<uint32_t>(std::clamp(0.25 / per_spp, 1.0, 4096.0));
+    const double aim = opt.time_limit > 0.0 ? std::clamp(0.5 * (opt.time_limit - elapsed()), 1e-3, 0.25) : 0.25;
+    pass_spp = static_cast<uint32_t>(std::clamp(aim / per_spp, 1.0, 4096.0));
   }
 
   stats.seconds = elapsed();
