@@ -24,6 +24,10 @@
 
 namespace dualight {
 
+// How the acceptance uses the mutation's transition ratio T(y -> x) / T(x -> y). Only Used is
+// correct; the others exist for tests (mlt_checks.h) as negative controls, never for users.
+enum class TransitionRatio { Used, Ignored, Inverted };
+
 struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampler is unused
   uint32_t bootstrap = 100000;
   uint32_t chains = 256;
@@ -39,6 +43,8 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   // width), and angular offsets of the caustic and multi-chain perturbations, in radians.
   float lens_radius_min = 0.1f, lens_radius_max = 0.f;
   float angle_min = 1e-4f, angle_max = 0.1f;
+  // Not bound for users: tests set it to break detailed balance on purpose (mlt_checks.h).
+  TransitionRatio transition_ratio = TransitionRatio::Used;
 };
 
 struct MutationStats {
@@ -70,5 +76,10 @@ struct StrategyCheck {
 };
 std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,
                                                  const MltOptions& options, size_t count);
+
+// For tests: the complete paths of every strategy that carries light in `count` bootstrap
+// samples (the chains' start candidates, not resampled).
+std::vector<Path> bootstrap_paths(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
+                                  size_t count);
 
 }  // namespace dualight
