@@ -129,6 +129,7 @@ std::vector<DensityCheck> check_perturbation_densities(const Scene& scene, const
                                                        const MltOptions& opt, const std::string& mutation,
                                                        size_t samples, size_t proposals, double film_step,
                                                        double angle_step) {
+  // The offsets' ranges as render_mlt's mutation set makes them.
   const float r_max = opt.lens_radius_max > 0.f ? opt.lens_radius_max : 0.1f * static_cast<float>(camera.width());
   const PerturbationRange film{std::min(opt.lens_radius_min, r_max), r_max};
   const PerturbationRange angle{opt.angle_min, opt.angle_max};
@@ -243,7 +244,8 @@ BidirectionalCheck check_bidirectional_density(const Scene& scene, const Pinhole
       float u = rng.next_float();
       const auto prim = static_cast<uint32_t>(by_area.sample(u));
       const Point2 b = square_to_uniform_triangle(next_2d(rng));
-      const Vec3 p = scene.vertex(prim, 0) * (1.f - b.u - b.v) + scene.vertex(prim, 1) * b.u + scene.vertex(prim, 2) * b.v;
+      const Vec3 p =
+          scene.vertex(prim, 0) * (1.f - b.u - b.v) + scene.vertex(prim, 1) * b.u + scene.vertex(prim, 2) * b.v;
       if (in_region(scene, x, vertex, p, scene.normal(prim), prim)) ++inside;
     }
     return static_cast<double>(inside) / static_cast<double>(count);
