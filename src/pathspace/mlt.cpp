@@ -221,6 +221,19 @@ class MutationSet {
   std::vector<float> weights_;
 };
 
+// T(y -> x) / T(x -> y) as the acceptance uses it; the wrong forms are negative controls.
+double transition_ratio(TransitionRatio use, const Transition& t) {
+  switch (use) {
+    case TransitionRatio::Ignored:
+      return 1.0;
+    case TransitionRatio::Inverted:
+      return t.forward / t.reverse;
+    case TransitionRatio::Used:
+      break;
+  }
+  return t.reverse / t.forward;
+}
+
 struct Chain {
   Pcg32 rng;
   State current;
@@ -338,6 +351,12 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
           if ((m & 63u) == 0 && control.cancelled()) break;
           ++done[c];
           State& x = chain.current;
+          if (mutations.total(x.path) <= 0.0) {
+            // No enabled mutation suits x (only when bidirectional is off, in tests): staying
+            // put is a kernel that keeps f invariant too.
+            splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
+            continue;
+          }
           double select_x = 0.0;
           const size_t k = mutations.select(x.path, chain.rng.next_float(), select_x);
           MutationStats& stat = counts[c][k];
@@ -347,7 +366,8 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
           if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
               evaluate(camera, importance, proposed) && t.forward > 0.0) {
             const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-            const double ratio = (proposed.target * t.reverse * select_y) / (x.target * t.forward * select_x);
+            const double t_ratio = transition_ratio(opt.transition_ratio, t);
+            const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
             a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
           } else {
             ++stat.failed;
@@ -423,6 +443,21 @@ std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const Pinho
                      });
   }
   return checks;
+}
+
+std::vector<Path> bootstrap_paths(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+                                  size_t count) {
+  std::vector<Path> out;
+  const BdptOptions bdpt = bootstrap_bdpt(opt);
+  Subpaths paths;
+  TraceCounters counters;
+  for (size_t i = 0; i < count; ++i) {
+    bootstrap_sample(scene, camera, bdpt, opt.seed, i, paths, counters,
+                     [&](int s, int t, const Color& c, float, const Vertex& sampled, const Point2&) {
+                       if (luminance(c) > 0.f) out.push_back(strategy_path(paths, sampled, s, t));
+                     });
+  }
+  return out;
 }
 
 }  // namespace dualight

@@ -25,6 +25,10 @@
 
 namespace dualight {
 
+// How the acceptance uses the mutation's transition ratio T(y -> x) / T(x -> y). Only Used is
+// correct; the others exist for tests (mlt_checks.h) as negative controls, never for users.
+enum class TransitionRatio { Used, Ignored, Inverted };
+
 struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampler is unused
   uint32_t bootstrap = 100000;
   uint32_t chains = 256;
@@ -44,6 +48,8 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   // smoothed estimate of the pixel's brightness (mlt_importance.h), from the direct light and
   // `bootstrap` / 4 pilot BDPT samples of their own.
   MltImportance importance = MltImportance::Luminance;
+  // Not bound for users: tests set it to break detailed balance on purpose (mlt_checks.h).
+  TransitionRatio transition_ratio = TransitionRatio::Used;
 };
 
 struct MutationStats {
@@ -75,5 +81,10 @@ struct StrategyCheck {
 };
 std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,
                                                  const MltOptions& options, size_t count);
+
+// For tests: the complete paths of every strategy that carries light in `count` bootstrap
+// samples (the chains' start candidates, not resampled).
+std::vector<Path> bootstrap_paths(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
+                                  size_t count);
 
 }  // namespace dualight
