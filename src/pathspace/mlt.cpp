@@ -277,9 +277,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   if (!direct_only && !control.cancelled()) {
     // Bootstrap: each sample's total weight (the sum over its strategies estimates b).
     std::vector<double> weight(n_boot, 0.0);
-    const size_t n_done = run_sample_blocks(
-        opt.threads, n_boot, std::min(n_boot, 8 * kSampleBlock), kBootstrapShare * opt.time_limit, elapsed, control,
-        [&](size_t, size_t begin, size_t end) {
+    const auto bootstrap_block = [&](size_t, size_t begin, size_t end) {
       Subpaths paths;
       TraceCounters counters;
       for (size_t i = begin; i < end; ++i) {
@@ -289,7 +287,10 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
                          });
       }
       rays.fetch_add(counters.rays, std::memory_order_relaxed);
-        });
+    };
+    // At least 8 blocks under a time limit: b's interval stays within a few per cent.
+    const size_t n_done = run_sample_blocks(opt.threads, n_boot, std::min(n_boot, 8 * kSampleBlock),
+                                            kBootstrapShare * opt.time_limit, elapsed, control, bootstrap_block);
     weight.resize(n_done);
     const MeanEstimate b = estimate_of(weight);
     mlt.b = mlt.b_splatted = b.mean();
