@@ -3,7 +3,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
-.PHONY: setup install demo test test-fast cpp-test bench clean
+.PHONY: setup install demo test test-fast cpp-test bench bench-quick bench-topics clean
 
 setup: $(VENV)/.setup-done
 $(VENV)/.setup-done: scripts/setup.sh
@@ -33,10 +33,20 @@ cpp-test: setup
 test-fast: install
 	$(PY) -m pytest -q -m "not slow and not mitsuba"
 
+# Error against run time of every method on the scene set (out/bench; --quick: under 5 min).
 bench: install
+	$(PY) -m dualight bench
+
+bench-quick: install
+	$(PY) -m dualight bench --quick
+
+# The per-topic benchmarks (benchmarks/, results in benchmarks/results).
+bench-topics: install
 	$(PY) benchmarks/bench_path.py
 	$(PY) benchmarks/bench_radiosity.py
 	$(PY) benchmarks/bench_hierarchical.py
+	$(PY) benchmarks/bench_bdpt.py
+	$(PY) benchmarks/bench_mlt.py
 
 clean:
 	rm -rf build out $(VENV)/.installed

@@ -1,4 +1,5 @@
-"""Command line: ``python -m dualight render ...`` and ``python -m dualight demo``."""
+"""Command line: ``python -m dualight render ...``, ``python -m dualight demo`` and
+``python -m dualight bench``."""
 
 from __future__ import annotations
 
@@ -188,6 +189,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     d.add_argument("--duality-seconds", type=float, default=5.0, help="per method")
     d.add_argument("-q", "--quiet", action="store_true")
     d.set_defaults(run=_demo_command)
+
+    from dualight import bench
+
+    bench.add_parser(sub)
 
     args = parser.parse_args(argv)
     try:

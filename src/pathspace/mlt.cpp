@@ -18,6 +18,7 @@
 #include "pathspace/mutations/caustic_perturbation.h"
 #include "pathspace/mutations/lens_perturbation.h"
 #include "pathspace/mutations/lens_subpath.h"
+#include "pathspace/start_up.h"
 
 namespace dualight {
 
@@ -99,34 +100,6 @@ Path strategy_path(const Subpaths& paths, const Vertex& sampled, int s, int t) {
 double weight_of(const Color& c, float mis) {
   const double w = static_cast<double>(std::max(0.f, luminance(c))) * mis;
   return std::isfinite(w) ? w : 0.0;
-}
-
-// Start-up under a time limit: the direct light, the pilot and the bootstrap each get at most a
-// share of it, so that a short budget still leaves most of its time to the chains (at 0.4 s
-// on the door, the default 128 spp of direct light and 100,000 bootstrap samples took it all).
-constexpr double kDirectShare = 0.1, kPilotShare = 0.05, kBootstrapShare = 0.1;
-constexpr size_t kSampleBlock = 1024, kBlocksPerWave = 8;
-
-// Runs block(b, begin, end) over the samples [0, count) in blocks of kSampleBlock, in waves of
-// kBlocksPerWave blocks (parallel within a wave); with seconds > 0, stops after the wave that
-// ends past `seconds` from now (at least `min_count` samples). Returns the samples done: a
-// prefix of the stream, so the result depends on timing only through its length.
-template <class Elapsed, class Block>
-size_t run_sample_blocks(int threads, size_t count, size_t min_count, double seconds, const Elapsed& elapsed,
-                         const RenderControl& control, const Block& block) {
-  const double deadline = elapsed() + seconds;
-  const size_t blocks = (count + kSampleBlock - 1) / kSampleBlock;
-  size_t done = 0;
-  for (size_t first = 0; first < blocks && !control.cancelled(); first += kBlocksPerWave) {
-    const size_t last = std::min(blocks, first + kBlocksPerWave);
-    parallel_for_each_index(threads, last - first, [&](size_t i) {
-      const size_t b = first + i;
-      block(b, b * kSampleBlock, std::min(count, (b + 1) * kSampleBlock));
-    });
-    done = std::min(count, last * kSampleBlock);
-    if (seconds > 0.0 && done >= min_count && elapsed() >= deadline) break;
-  }
-  return done;
 }
 
 // The importance factor of each pixel for MltImportance::Flattened: the direct light plus a pilot

@@ -15,6 +15,7 @@
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
 #include "pathspace/direct_light.h"
+#include "pathspace/start_up.h"
 
 namespace dualight {
 
@@ -127,24 +128,28 @@ struct Chain {
 
 // Independent samples of f: the mean, with the variance of the mean from their spread.
 // Independent samples (large steps from fresh samplers): their f values, by sample index.
-template <class MakeEvaluator>
+// With seconds > 0 (a share of the time limit, start_up.h), fewer than n if that runs out.
+template <class MakeEvaluator, class Elapsed>
 std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& opt, uint64_t seed, size_t n,
-                              RenderControl& control, std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+                              double seconds, const Elapsed& elapsed, RenderControl& control,
+                              std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
   std::vector<double> f(n, 0.0);
-  parallel_for_each_index(opt.threads, (n + 1023) / 1024, [&](size_t block) {
-    if (control.cancelled()) return;
-    auto evaluate = make();
-    Contribution c;
-    TraceCounters counters;
-    for (size_t i = block * 1024; i < std::min(n, (block + 1) * 1024); ++i) {
-      PrimarySampleSampler sampler(seed, i, opt.sigma, opt.large_step_probability);
-      sampler.start_large_step();
-      evaluate(sampler, c, counters);
-      f[i] = c.f;
-    }
-    rays.fetch_add(counters.rays, std::memory_order_relaxed);
-    invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
-  });
+  const size_t done = run_sample_blocks(opt.threads, n, std::min(n, 8 * kSampleBlock), seconds, elapsed, control,
+                                        [&](size_t, size_t begin, size_t end) {
+                                          auto evaluate = make();
+                                          Contribution c;
+                                          TraceCounters counters;
+                                          for (size_t i = begin; i < end; ++i) {
+                                            PrimarySampleSampler sampler(seed, i, opt.sigma,
+                                                                         opt.large_step_probability);
+                                            sampler.start_large_step();
+                                            evaluate(sampler, c, counters);
+                                            f[i] = c.f;
+                                          }
+                                          rays.fetch_add(counters.rays, std::memory_order_relaxed);
+                                          invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
+                                        });
+  f.resize(done);
   return f;
 }
 
@@ -300,7 +305,8 @@ void add_population(MltStats& mlt, const Population& pop) {
 bool render_direct(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, MltResult& result,
                    std::vector<double>& image, RenderControl& control) {
   if (opt.direct_spp == 0) return false;
-  const RenderResult r = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control);
+  const RenderResult r = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control,
+                                             kDirectShare * opt.time_limit);
   const std::vector<float> mean = r.film.mean();
   std::copy(mean.begin(), mean.end(), image.begin());
   result.direct = r.stats;
@@ -340,7 +346,10 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
       double b_total = 0.0;
       for (int d = first; d <= opt.max_depth; ++d) {
         const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-        f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, control, rays, invalid);
+        // Under a time limit the lengths share the bootstrap's share.
+        const double seconds = kBootstrapShare * opt.time_limit / static_cast<double>(opt.max_depth - first + 1);
+        f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, seconds, elapsed,
+                              control, rays, invalid);
         b_boot[d] = estimate_of(f_boot[d]).mean();
         b_total += b_boot[d];
       }
@@ -396,7 +405,8 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
     } else {
       const auto make = [&] { return Evaluator(scene, camera, opt, 0); };
       const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
-      const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, control, rays, invalid);
+      const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, kBootstrapShare * opt.time_limit,
+                                                   elapsed, control, rays, invalid);
       MeanEstimate b = estimate_of(f_boot);
       mlt.b_splatted = b.mean();
       if (mlt.b_splatted > 0.0) {
