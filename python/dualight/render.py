@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numbers
 import os
 from collections.abc import Callable
 from typing import Any
@@ -39,10 +40,57 @@ class _TqdmProgress:
             self._bar.close()
 
 
-def _check_int(name: str, value: Any, minimum: int) -> int:
+# Keyword options each MLT method takes through ``mlt=`` (the rest of its core options struct
+# comes from render's own keywords). Integers among them must be >= the given minimum.
+_MLT_OPTIONS: dict[str, frozenset[str]] = {
+    "pssmlt": frozenset(
+        {"bootstrap", "chains", "sigma", "large_step_probability", "large_step_mis", "direct_spp"}
+    ),
+    "mlt": frozenset(
+        {
+            "bootstrap",
+            "chains",
+            "direct_spp",
+            "bidirectional",
+            "lens_subpath",
+            "lens_perturbation",
+            "caustic_perturbation",
+            "multi_chain_perturbation",
+            "lens_radius_min",
+            "lens_radius_max",
+            "angle_min",
+            "angle_max",
+            "importance",
+        }
+    ),
+}
+_MLT_OPTIONS["mmlt"] = _MLT_OPTIONS["pssmlt"]
+_MLT_INT_MINIMUM = {"bootstrap": 1, "chains": 1, "direct_spp": 0}
+
+
+def _check_int(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if maximum is not None and value > maximum:
+        raise ValueError(f"{name} must be an integer <= {maximum}, got {value!r}")
     return value
+
+
+def _check_mlt_options(method: str, mlt: Any) -> dict[str, Any]:
+    """``mlt=`` as a dict of known keys: a misspelled key is a TypeError naming it, a negative
+    count a ValueError (instead of pybind11's list of overloads)."""
+    if not isinstance(mlt, dict):
+        raise TypeError(f"mlt must be a dict of options, got {type(mlt).__name__}")
+    valid = _MLT_OPTIONS[method]
+    for key, value in mlt.items():
+        if key not in valid:
+            raise TypeError(
+                f"unknown mlt option {key!r} for method {method!r}; "
+                f"valid: {', '.join(sorted(valid))}"
+            )
+        if key in _MLT_INT_MINIMUM:
+            _check_int(f"mlt option {key}", value, _MLT_INT_MINIMUM[key], (1 << 32) - 1)
+    return mlt
 
 
 def render(
@@ -165,12 +213,20 @@ def render(
         _check_int("spp", spp, 1)
         if spp >= 1 << 32:
             raise ValueError(f"spp must be < 2**32, got {spp}")
-    if time_limit is not None and not (time_limit > 0):
-        raise ValueError(f"time_limit must be > 0 seconds, got {time_limit!r}")
-    if isinstance(max_depth, bool) or not isinstance(max_depth, int) or max_depth < -1:
+    if time_limit is not None and (
+        isinstance(time_limit, bool)
+        or not isinstance(time_limit, numbers.Real)
+        or not 0 < time_limit < float("inf")
+    ):
+        raise ValueError(f"time_limit must be a finite number > 0 of seconds, got {time_limit!r}")
+    if (
+        isinstance(max_depth, bool)
+        or not isinstance(max_depth, int)
+        or not -1 <= max_depth < 1 << 31
+    ):
         raise ValueError(f"max_depth must be -1 (unbounded) or an integer >= 0, got {max_depth!r}")
-    _check_int("rr_depth", rr_depth, 1)
-    _check_int("seed", seed, 0)
+    _check_int("rr_depth", rr_depth, 1, (1 << 31) - 1)
+    _check_int("seed", seed, 0, (1 << 64) - 1)
     if threads is not None:
         _check_int("threads", threads, 1)
         threads = min(threads, os.cpu_count() or threads)
@@ -183,6 +239,8 @@ def render(
         spp = mutations_per_pixel
     if mlt is not None and method not in _MLT:
         raise ValueError("mlt options apply to the MLT methods only (pssmlt, mmlt, mlt)")
+    if mlt is not None:
+        mlt = _check_mlt_options(method, mlt)
     if heuristic not in HEURISTICS:
         raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
     if method not in ("bdpt", *_MLT) and heuristic != "power":

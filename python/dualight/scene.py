@@ -36,7 +36,10 @@ _DEFAULT_REFLECTANCE: Vec3 = (0.5, 0.5, 0.5)
 
 
 def _vec3(value: Any, name: str) -> Vec3:
-    arr = np.asarray(value, dtype=np.float64)
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be 3 numbers, got {value!r}") from None
     if arr.shape != (3,):
         raise ValueError(f"{name} must be 3 numbers, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -72,7 +75,10 @@ class Camera:
         object.__setattr__(self, "origin", origin)
         object.__setattr__(self, "target", target)
         object.__setattr__(self, "up", up)
-        fov = float(self.fov)
+        try:
+            fov = float(self.fov)
+        except (TypeError, ValueError):
+            raise ValueError(f"camera fov must be a number of degrees, got {self.fov!r}") from None
         if not (math.isfinite(fov) and 0.0 < fov < 180.0):
             raise ValueError(f"camera fov must be in (0, 180) degrees, got {self.fov}")
         object.__setattr__(self, "fov", fov)
@@ -162,6 +168,8 @@ def _triangulate(faces: Any, n_vertices: int, name: str) -> np.ndarray:
         raise ValueError(f"{name}: faces must have shape (F, 3) or (F, 4), got {f.shape}")
     if f.shape[0] == 0:
         raise ValueError(f"{name}: faces is empty")
+    if not (np.issubdtype(f.dtype, np.number) and not np.issubdtype(f.dtype, np.complexfloating)):
+        raise ValueError(f"{name}: faces must hold integer vertex indices, got dtype {f.dtype}")
     if not np.issubdtype(f.dtype, np.integer):
         if not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
             raise ValueError(f"{name}: faces must hold integer vertex indices")
@@ -287,7 +295,12 @@ class Scene:
                 f"{name}: material must be a dualight.Diffuse, Mirror or Dielectric, "
                 f"got {type(material).__name__}"
             )
-        v = np.array(vertices, dtype=np.float64, copy=True)
+        if degenerate not in ("raise", "drop"):
+            raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
+        try:
+            v = np.array(vertices, dtype=np.float64, copy=True)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name}: vertices must be (V, 3) numbers") from None
         if v.ndim != 2 or v.shape[1] != 3 or v.shape[0] == 0:
             raise ValueError(f"{name}: vertices must have shape (V, 3) with V > 0, got {v.shape}")
         if not np.all(np.isfinite(v)):
@@ -322,8 +335,6 @@ class Scene:
                     f"{first} with vertices {tris[first].tolist()}; pass degenerate='drop' to "
                     "remove them"
                 )
-            if degenerate != "drop":
-                raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
             warnings.warn(f"{name}: dropped {int(zero.sum())} zero-area triangle(s)", stacklevel=2)
             tris, areas = tris[~zero], areas[~zero]
             if len(tris) == 0:

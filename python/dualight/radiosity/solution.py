@@ -3,6 +3,7 @@ from both sides, and the three pictures (radiosity, importance, superposition)."
 
 from __future__ import annotations
 
+import numbers
 import time
 import warnings
 from collections.abc import Callable
@@ -282,6 +283,25 @@ def form_factor_checks(F: _core.FormFactors, areas: np.ndarray) -> dict[str, flo
     return dict(F.checks(np.ascontiguousarray(areas, dtype=np.float64)))
 
 
+def _check_solve_arguments(
+    scene: Any, camera: Any, tol: Any, max_iter: Any, seed: Any
+) -> None:
+    """Reject bad arguments before any form factor is computed, naming the argument (every
+    method, including ``"direct"``, which takes a single step and would ignore ``max_iter``)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+    if camera is not None and not isinstance(camera, Camera):
+        raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
+    if not scene.meshes:
+        raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
+    if isinstance(tol, bool) or not isinstance(tol, numbers.Real) or not 0 < tol < float("inf"):
+        raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral) or max_iter < 1:
+        raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
+
+
 def solve(
     scene: Scene,
     method: str = "direct",
@@ -334,6 +354,7 @@ def solve(
         threshold, the smallest element area and a cap on links; ``max_iter`` bounds the
         refine-and-solve iterations and ``tol`` the change per sweep.
     """
+    _check_solve_arguments(scene, camera, tol, max_iter, seed)
     if method == "hierarchical":
         from dualight.radiosity.hierarchical import HierarchicalSolver
 
