@@ -26,6 +26,7 @@ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDUALIGHT_SANITIZE=ON 
 cmake --build "$BUILD" -j 2
 
 # The package from the source tree plus the instrumented extension.
+rm -rf "$SITE/dualight"
 mkdir -p "$SITE/dualight"
 cp -r python/dualight/. "$SITE/dualight/"
 cp "$BUILD"/src/_core*.so "$SITE/dualight/"

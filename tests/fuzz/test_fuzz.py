@@ -1,5 +1,5 @@
 """The atheris fuzz targets in CI: every stored regression input (each once a crash), then a
-short time-boxed run of each target (``DUALIGHT_FUZZ_SECONDS``, default 20 s; ``make fuzz`` runs
+short time-boxed run of each target (``DUALIGHT_FUZZ_SECONDS``, default 15 s; ``make fuzz`` runs
 longer). A target fails on anything but a clean Python exception, see ``fuzz_*.py``."""
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ def test_regression_input(path: Path) -> None:
 @pytest.mark.fuzz
 @pytest.mark.parametrize("target", sorted(TARGETS))
 def test_fuzz_short(target: str, tmp_path: Path) -> None:
-    seconds = int(os.environ.get("DUALIGHT_FUZZ_SECONDS", "20"))
+    seconds = int(os.environ.get("DUALIGHT_FUZZ_SECONDS", "15"))
     corpus = tmp_path / "corpus"
     corpus.mkdir()
     result = subprocess.run(
