@@ -3,7 +3,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
-.PHONY: setup install demo test test-fast cpp-test bench bench-quick bench-topics clean
+.PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics clean
 
 setup: $(VENV)/.setup-done
 $(VENV)/.setup-done: scripts/setup.sh
@@ -31,7 +31,24 @@ cpp-test: setup
 	ctest --test-dir build/cpp-tests --output-on-failure
 
 test-fast: install
-	$(PY) -m pytest -q -m "not slow and not mitsuba"
+	$(PY) -m pytest -q -m "not slow and not mitsuba and not fuzz"
+
+# The C++ unit tests and a fast pytest subset under AddressSanitizer and UBSan, built in
+# build/sanitize (its own package folder; .venv keeps the normal build). A few minutes.
+test-sanitize: setup
+	bash scripts/test_sanitize.sh
+
+# Each atheris fuzz target for FUZZ_SECONDS (default 300), corpus kept in build/fuzz/<target>;
+# crashing inputs land in build/fuzz/ (add them to tests/fuzz/regressions/<target>/).
+FUZZ_SECONDS ?= 300
+fuzz: install
+	@for t in scene loaders; do \
+	  mkdir -p build/fuzz/$$t; echo "fuzz_$$t: $(FUZZ_SECONDS) s, log in build/fuzz/$$t.log"; \
+	  $(PY) tests/fuzz/fuzz_$$t.py -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 -timeout=60 \
+	    -print_final_stats=1 -artifact_prefix=build/fuzz/ build/fuzz/$$t >build/fuzz/$$t.log 2>&1; \
+	  status=$$?; grep -E "^(Done|stat::average_exec_per_sec|fuzz_)" build/fuzz/$$t.log; \
+	  if [ $$status -ne 0 ]; then tail -40 build/fuzz/$$t.log; exit 1; fi; \
+	done
 
 # Error against run time of every method on the scene set (out/bench; --quick: under 5 min).
 bench: install

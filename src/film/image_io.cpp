@@ -2,8 +2,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace dualight {
 
@@ -36,6 +38,26 @@ LoadedImage read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::invalid_argument("cannot read image '" + path + "': " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  // The header is checked before anything is allocated: a damaged or hostile header can claim a
+  // huge data window (found by fuzzing: an EXR whose dataWindow asked for terabytes), and a
+  // volume image (depth > 1, as TIFF allows) would hold depth times the pixels read below.
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    throw std::invalid_argument("cannot read image '" + path + "': it has no pixels (" +
+                                std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
+                                std::to_string(spec.nchannels) + " channels)");
+  }
+  if (spec.depth != 1) {
+    throw std::invalid_argument("cannot read image '" + path + "': volume images (depth " +
+                                std::to_string(spec.depth) + ") are not supported");
+  }
+  const uint64_t values = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height) *
+                          static_cast<uint64_t>(spec.nchannels);
+  if (values > kMaxImageValues) {
+    throw std::invalid_argument("cannot read image '" + path + "': " + std::to_string(spec.width) + " x " +
+                                std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) +
+                                " channels is more than " + std::to_string(kMaxImageValues) +
+                                " values (1 GiB of float32)");
+  }
   LoadedImage img;
   img.width = spec.width;
   img.height = spec.height;

@@ -21,6 +21,11 @@ struct LoadedImage {
 // mapped to [0, 1] by the caller); float formats keep full precision (EXR as 32-bit float).
 void write_image(const std::string& path, int width, int height, int channels, const float* pixels,
                  const ImageMetadata& metadata);
+// Largest image read_image accepts, in values (width x height x channels): 1 GiB of float32, an
+// 8k x 8k RGBA image. Larger, empty or volume (depth > 1) images raise std::invalid_argument
+// before any allocation.
+inline constexpr uint64_t kMaxImageValues = uint64_t{1} << 28;
+// Reads subimage 0 as float pixels; std::invalid_argument if the file cannot be read.
 LoadedImage read_image(const std::string& path);
 
 }  // namespace dualight

@@ -57,6 +57,24 @@ int clip_to_half_space(const D3& x, const D3& n, const D3* in, int m, D3* out) {
   return count;
 }
 
+// Whether some corner lies in front of the plane through p with normal n (any length) by more
+// than float rounding: 1e-6 (about 8 float ulps) of the largest coordinate involved. Exactly
+// coplanar is not enough: the corners of a coincident or overlapping coplanar patch are rounded a
+// hair off the plane, and the contour integral of a coplanar polygon around x is the whole
+// hemisphere, F = 1 (found by fuzzing: duplicated triangles gave form-factor rows summing to 4,
+// then negative or infinite radiosity). A patch that close to the plane is seen at a grazing
+// angle unless it is as close to x as the rounding itself.
+double max_abs(const D3& a) { return std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)}); }
+bool corner_in_front(const D3& p, const D3& n, const D3* corners) {
+  constexpr double kRounding = 1e-6;
+  const double scale = std::max({max_abs(p), max_abs(corners[0]), max_abs(corners[1]), max_abs(corners[2])});
+  const double threshold = kRounding * scale * norm3(n);
+  for (int c = 0; c < 3; ++c) {
+    if (dot3(n, sub(corners[c], p)) > threshold) return true;
+  }
+  return false;
+}
+
 double form_factor_to_polygon(const D3& x, const D3& n, const D3* poly, int m) {
   const D3 source_normal = cross3(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
   if (!(dot3(source_normal, sub(x, poly[0])) > 0.0)) return 0.0;  // x behind or in the source's plane
@@ -103,6 +121,11 @@ double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector
   if (!(len > 0.0)) throw std::invalid_argument("normal must be non-zero");
   return form_factor_to_polygon(to_d3(x), {nd.x / len, nd.y / len, nd.z / len}, poly.data(),
                                 static_cast<int>(polygon.size()));
+}
+
+bool some_corner_in_front(const Vec3& p, const Vec3& n, const Vec3 corners[3]) {
+  const D3 c[3] = {to_d3(corners[0]), to_d3(corners[1]), to_d3(corners[2])};
+  return corner_in_front(to_d3(p), to_d3(n), c);
 }
 
 double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 triangle[3]) {
@@ -156,15 +179,9 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
         if (j == i) continue;  // a planar patch does not see itself
         const Corners& tj = tri[j];
         // Exact culls: the planes are shared by all points of each patch.
-        if (!(dot3(ni, sub(tj.v[0], ti.v[0])) > 0.0 || dot3(ni, sub(tj.v[1], ti.v[0])) > 0.0 ||
-              dot3(ni, sub(tj.v[2], ti.v[0])) > 0.0)) {
-          continue;  // j lies entirely behind or in i's plane
-        }
+        if (!corner_in_front(ti.v[0], ni, tj.v)) continue;  // j behind or in i's plane
         const D3 nj = cross3(sub(tj.v[1], tj.v[0]), sub(tj.v[2], tj.v[0]));
-        if (!(dot3(nj, sub(ti.v[0], tj.v[0])) > 0.0 || dot3(nj, sub(ti.v[1], tj.v[0])) > 0.0 ||
-              dot3(nj, sub(ti.v[2], tj.v[0])) > 0.0)) {
-          continue;  // i lies entirely behind or in j's plane
-        }
+        if (!corner_in_front(tj.v[0], nj, ti.v)) continue;  // i behind or in j's plane
         ++local_tested;
         double unoccluded = 0.0;
         for (size_t k = 0; k < rule.size(); ++k) {

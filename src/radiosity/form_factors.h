@@ -57,6 +57,11 @@ double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector
 // The same for a triangle, without allocating (hot in hierarchical refinement).
 double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 triangle[3]);
 
+// Whether some corner of a triangle lies in front of the plane through p with normal n (any
+// length) by more than float rounding (1e-6 of the largest coordinate): the facing cull of patch
+// pairs, which must treat coincident and overlapping coplanar patches as coplanar.
+bool some_corner_in_front(const Vec3& p, const Vec3& n, const Vec3 corners[3]);
+
 // Every row i of F for the triangles of `patches` (one patch per triangle).
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
                                FormFactorStats& stats);

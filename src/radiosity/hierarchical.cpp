@@ -83,14 +83,8 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
 }
 
 bool HierarchicalSolver::facing(const Element& a, const Element& b) const {
-  // Some corner of each lies strictly in front of the other's plane.
-  auto in_front = [](const Element& plane, const Element& other) {
-    for (const Vec3& p : other.v) {
-      if (dot(plane.normal, p - plane.v[0]) > 0.f) return true;
-    }
-    return false;
-  };
-  return in_front(a, b) && in_front(b, a);
+  // Some corner of each lies in front of the other's plane, by more than rounding.
+  return some_corner_in_front(a.v[0], a.normal, b.v) && some_corner_in_front(b.v[0], b.normal, a.v);
 }
 
 HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const {

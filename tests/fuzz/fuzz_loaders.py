@@ -1,0 +1,73 @@
+"""Fuzz the file loaders with atheris: ``dualight.Image.load`` on fuzzed bytes.
+
+The first input byte picks the suffix (``.exr``, ``.png``, ``.hdr``, ...), the rest is written to
+a temporary file that ``Image.load`` reads through OpenImageIO. The only acceptable failures are
+clean Python exceptions with a message (``ValueError`` for a file that cannot be read or
+decoded, ...); a segfault, an abort, a sanitizer report or an image that is not H x W x 3
+float32 is a crash. (dualight has no scene-file loader yet; when one is added, fuzz it here.)
+
+Run: ``python tests/fuzz/fuzz_loaders.py -max_total_time=60 corpus_dir`` (libFuzzer flags). An
+empty corpus directory is first seeded with small valid files of each format, so the fuzzer
+starts from real headers.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import atheris
+import numpy as np
+
+with atheris.instrument_imports():
+    import dualight
+
+SUFFIXES = (".exr", ".png", ".hdr", ".tif", ".jpg", ".pfm", ".ppm", ".bmp", ".tga")
+ACCEPTED = (ValueError, TypeError, FileNotFoundError, RuntimeError)
+_TMP = Path(tempfile.mkdtemp(prefix="dualight-fuzz-"))
+
+
+def load(data: bytes) -> dualight.Image:
+    suffix = SUFFIXES[data[0] % len(SUFFIXES)] if data else ".exr"
+    path = _TMP / f"input{suffix}"
+    path.write_bytes(data[1:])
+    return dualight.Image.load(path)
+
+
+def test_one_input(data: bytes) -> None:
+    try:
+        image = load(data)
+    except ACCEPTED as exc:
+        if not str(exc):
+            raise AssertionError(f"{type(exc).__name__} without a message") from exc
+        return
+    pixels = np.asarray(image)
+    if pixels.dtype != np.float32 or pixels.ndim != 3 or pixels.shape[2] != 3:
+        raise AssertionError(f"loaded image has dtype {pixels.dtype}, shape {pixels.shape}")
+
+
+def seed_corpus(folder: Path) -> None:
+    """Small valid files of each format (a 5 x 3 gradient with stats as metadata)."""
+    rng = np.random.default_rng(0)
+    image = dualight.Image(rng.random((3, 5, 3), dtype=np.float32) * 4.0, stats={"spp": 4})
+    for i, suffix in enumerate(SUFFIXES):
+        path = _TMP / f"seed{suffix}"
+        try:
+            image.save(path)
+        except ValueError:
+            continue  # a format this OpenImageIO cannot write
+        (folder / f"seed{suffix}").write_bytes(bytes([i]) + path.read_bytes())
+
+
+def main() -> None:
+    for arg in sys.argv[1:]:
+        if not arg.startswith("-") and os.path.isdir(arg) and not os.listdir(arg):
+            seed_corpus(Path(arg))
+    atheris.Setup(sys.argv, test_one_input)
+    atheris.Fuzz()
+
+
+if __name__ == "__main__":
+    main()
