@@ -1,5 +1,6 @@
 #include "geometry/embree_accel.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -30,6 +31,18 @@ void check_device(RTCDevice device, const char* what) {
     throw std::runtime_error(std::string("Embree error during ") + what + " (code " +
                              std::to_string(static_cast<int>(err)) + ")");
   }
+}
+
+// What Embree accepts (its RayK::valid(), an assertion in some builds, e.g. Debian's): origin
+// and direction within +-1.844e18 (FLT_LARGE), and a tfar that is not NaN. Rays outside that
+// (from scenes at extreme scales, or NaN that slipped through) are treated as missing
+// everything and as occluded, which adds no light, instead of aborting the process.
+bool embree_accepts(const Ray& ray) {
+  constexpr float kLarge = 1.844e18f;
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::fabs(ray.o[i]) <= kLarge) || !(std::fabs(ray.d[i]) <= kLarge)) return false;
+  }
+  return !std::isnan(ray.tmax) && ray.tmax >= 0.f;
 }
 
 void fill_ray(const Ray& ray, RTCRay& r) {
@@ -110,6 +123,7 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
 EmbreeAccel::~EmbreeAccel() = default;
 
 RayHit EmbreeAccel::intersect(const Ray& ray) const {
+  if (!embree_accepts(ray)) return RayHit{};
   RTCRayHit rh;
   fill_ray(ray, rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -132,6 +146,7 @@ RayHit EmbreeAccel::intersect(const Ray& ray) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
+  if (!embree_accepts(ray)) return true;
   RTCRay r;
   fill_ray(ray, r);
   FilterContext fc{};
