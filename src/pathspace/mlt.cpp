@@ -169,19 +169,23 @@ class MutationSet {
   double suitable_weight(size_t i, const Path& x) const {
     return weights_[i] > 0.f && mutations_[i]->suitable(x) ? weights_[i] : 0.0;
   }
-  // A mutation for x, chosen in proportion to weight among the suitable; its probability.
-  size_t select(const Path& x, float u, double& probability) const {
+  // A mutation for x, chosen in proportion to weight among the suitable (one draw from rng),
+  // and its probability; size() when none suits x (no draw).
+  size_t select(const Path& x, Pcg32& rng, double& probability) const {
     const double sum = total(x);
-    double target = u * sum;
+    if (!(sum > 0.0)) return size();
+    double target = rng.next_float() * sum;
     size_t last = 0;
+    double last_weight = 0.0;
     for (size_t i = 0; i < size(); ++i) {
       const double w = suitable_weight(i, x);
       if (w <= 0.0) continue;
       last = i;
+      last_weight = w;
       if (target < w) break;
       target -= w;
     }
-    probability = suitable_weight(last, x) / sum;
+    probability = last_weight / sum;
     return last;
   }
 
@@ -325,14 +329,14 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
           if ((m & 63u) == 0 && control.cancelled()) break;
           ++done[c];
           State& x = chain.current;
-          if (mutations.total(x.path) <= 0.0) {
+          double select_x = 0.0;
+          const size_t k = mutations.select(x.path, chain.rng, select_x);
+          if (k == mutations.size()) {
             // No enabled mutation suits x (only when bidirectional is off, in tests): staying
             // put is a kernel that keeps f invariant too.
             splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
             continue;
           }
-          double select_x = 0.0;
-          const size_t k = mutations.select(x.path, chain.rng.next_float(), select_x);
           MutationStats& stat = counts[c][k];
           ++stat.proposed;
           Transition t;
