@@ -93,6 +93,33 @@ def _check_mlt_options(method: str, mlt: Any) -> dict[str, Any]:
     return mlt
 
 
+def _scene_features(scene: Scene, camera: Camera | None = None) -> dict[str, Any]:
+    """``scene.features`` plus what depends on the camera: ``camera_enclosed`` (its origin
+    strictly inside the convex enclosure) and ``emitters_facing_camera`` (emitter triangles
+    whose front faces the camera's origin: none means no emitter can be seen directly)."""
+    compiled = scene._compile()
+    features = scene.features
+    cam = camera or scene.camera
+    if cam is not None:
+        features["camera_enclosed"] = bool(compiled.encloses(tuple(cam.origin)))
+        features["emitters_facing_camera"] = scene.emitters_facing(cam.origin)
+    return features
+
+
+def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
+    """What a render left out, from its counters: shadow rays known unneeded (convex
+    enclosure), connections that could not carry light (a specular end, a zero BSDF or
+    emission term, a point outside the view), mutations the scene cannot use."""
+    out: dict[str, Any] = {
+        "enabled": skip,
+        "shadow_rays": int(stats.get("skipped_shadow_rays", 0)),
+        "connections": int(stats.get("skipped_connections", 0)),
+    }
+    if "skipped_mutations" in stats:
+        out["mutations"] = list(stats["skipped_mutations"])
+    return out
+
+
 def render(
     scene: Scene,
     method: str = "path",
@@ -110,6 +137,7 @@ def render(
     strategy_images: bool = False,
     mutations_per_pixel: int | None = None,
     mlt: dict[str, Any] | None = None,
+    skip: bool = True,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -191,6 +219,14 @@ def render(
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
         ``t`` camera vertices, ``s + t - 1`` segments). They sum to the image.
+    skip:
+        Skip work the scene makes pointless (the default), as its features
+        (``scene.features``) allow: no shadow rays in a convex enclosure without glass that
+        holds the camera (nothing can block a connection there), no caustic or multi-chain
+        perturbations without mirrors or glass, no connection to a specular vertex or along a
+        zero BSDF. ``image.stats["skipped"]`` says what was skipped, ``["scene"]`` the
+        features. ``False`` does all the work (to measure what skipping saves); the image's
+        expected value is the same.
 
     Returns
     -------
@@ -251,6 +287,8 @@ def render(
         raise ValueError("strategy_images needs a bounded max_depth >= 1")
     if camera is not None and not isinstance(camera, Camera):
         raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
+    if not isinstance(skip, bool):
+        raise TypeError(f"skip must be True or False, got {skip!r}")
     scene.validate_for_rendering(camera)
     cam = camera or scene.camera
     assert cam is not None
@@ -300,6 +338,7 @@ def render(
                 strategy_images=strategy_images,
             ),
         )
+    options.skip_unneeded = skip
     bar = None
     callback: ProgressCallback | None
     if progress is True:
@@ -321,6 +360,8 @@ def render(
     stats.update(method=method, sampler=sampler, seed=seed, max_depth=max_depth, rr_depth=rr_depth)
     # What the scene asks for: without mirrors or glass no connection is skipped as specular.
     stats["specular_surfaces"] = scene.has_specular
+    stats["scene"] = _scene_features(scene, cam)
+    stats["skipped"] = _skipped(stats, skip)
     if method != "path":
         stats["light_paths"] = result["light_paths"]
     if method == "bdpt":

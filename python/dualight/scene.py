@@ -241,6 +241,33 @@ class Scene:
         (delta BSDFs, which radiosity cannot handle)."""
         return any(isinstance(m.material, Mirror | Dielectric) for m in self._meshes)
 
+    @property
+    def features(self) -> dict[str, Any]:
+        """What the scene holds, computed once when it is compiled (renders and solves use it
+        to skip work that cannot contribute):
+
+        ``specular`` (some mirror or glass), ``dielectric``, ``all_diffuse``,
+        ``emitter_triangles``, ``closed`` (every edge shared by exactly two triangles, in
+        opposite directions: watertight and consistently oriented), ``convex_enclosure``
+        (every vertex on or in front of every triangle's plane, to 1e-5 of the scene's size:
+        two surface points that face each other always see each other; ``False`` too when a
+        very large scene was not checked, see ``convexity_checked``) and ``unoccluded`` (a
+        convex enclosure without glass: renders with the camera inside need no shadow rays).
+        """
+        return dict(self._compile().features)
+
+    def emitters_facing(self, point: Any) -> int:
+        """How many emitter triangles turn their emitting (front) side towards ``point``."""
+        p = np.asarray(point, dtype=np.float64).reshape(3)
+        count = 0
+        for m in self._meshes:
+            if not m.is_emitter:
+                continue
+            tri = m.vertices[m.triangles]
+            n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+            count += int(np.count_nonzero(np.einsum("ij,ij->i", n, p - tri[:, 0]) > 0))
+        return count
+
     def add_mesh(
         self,
         vertices: Any,

@@ -65,6 +65,25 @@ void bind_geometry(py::module_& m) {
            "reflectance is the diffuse albedo or the mirror's reflectance.")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
+      .def_property_readonly(
+          "features",
+          [](const Scene& s) {
+            const SceneFeatures& f = s.features();
+            py::dict d;
+            d["specular"] = f.specular;
+            d["dielectric"] = f.dielectric;
+            d["all_diffuse"] = f.all_diffuse();
+            d["emitter_triangles"] = f.emitter_triangles;
+            d["closed"] = f.closed;
+            d["convex_enclosure"] = f.convex_enclosure;
+            d["convexity_checked"] = f.convexity_checked;
+            d["unoccluded"] = f.unoccluded();
+            return d;
+          },
+          "What the scene holds, computed once at construction (see scene_features.h).")
+      .def(
+          "encloses", [](const Scene& s, const std::array<float, 3>& p) { return s.features().encloses(to_vec3(p)); },
+          py::arg("point"), "Whether point lies strictly inside the scene's convex enclosure (False if none).")
       .def_property_readonly("bounds",
                              [](const Scene& s) {
                                const Vec3 lo = s.bounds_min(), hi = s.bounds_max();

@@ -39,6 +39,8 @@ TransitionRatio transition_ratio_of(const std::string& name) {
 
 void bind_mlt(py::module_& m) {
   py::class_<MltOptions>(m, "MltOptions", "Options of path-space Metropolis light transport (keywords only).")
+      .def_readwrite("skip_unneeded", &MltOptions::skip_unneeded,
+                     "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
                        double time_limit, uint32_t bootstrap, uint32_t chains, MisHeuristic heuristic,
                        uint32_t direct_spp, float bidirectional, float lens_subpath, float lens_perturbation,
@@ -104,6 +106,7 @@ void bind_mlt(py::module_& m) {
                                      options.direct_spp, run.keyboard_interrupt);
         py::dict stats = d["stats"];
         stats["mutation_types"] = mutation_stats_dict(mutations);
+        stats["skipped_mutations"] = run.result.skipped_mutations;
         stats["importance"] = options.importance == MltImportance::Flattened ? "flattened" : "luminance";
         return d;
       },

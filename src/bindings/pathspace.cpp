@@ -21,6 +21,8 @@ void bind_pathspace(py::module_& m) {
       .value("sobol", SamplerType::Sobol);
 
   py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
+      .def_readwrite("skip_unneeded", &PathTracerOptions::skip_unneeded,
+                     "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler) {
              check_common(spp, max_depth, rr_depth, threads, time_limit);
@@ -56,6 +58,8 @@ void bind_pathspace(py::module_& m) {
       .value("balance", MisHeuristic::Balance);
 
   py::class_<LightTracerOptions>(m, "LightTracerOptions", "Options of the light tracer (keywords only).")
+      .def_readwrite("skip_unneeded", &LightTracerOptions::skip_unneeded,
+                     "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler) {
              check_common(spp, max_depth, rr_depth, threads, time_limit);
@@ -66,6 +70,8 @@ void bind_pathspace(py::module_& m) {
            py::arg("sampler") = SamplerType::Independent);
 
   py::class_<BdptOptions>(m, "BdptOptions", "Options of bidirectional path tracing (keywords only).")
+      .def_readwrite("skip_unneeded", &BdptOptions::skip_unneeded,
+                     "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
                        SamplerType sampler, MisHeuristic heuristic, bool strategy_images) {
              check_common(spp, max_depth, rr_depth, threads, time_limit);
@@ -120,6 +126,8 @@ void bind_pathspace(py::module_& m) {
       "keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.");
 
   py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
+      .def_readwrite("skip_unneeded", &PssmltOptions::skip_unneeded,
+                     "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
                        double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
                        float large_step_probability, bool large_step_mis, MisHeuristic heuristic,

@@ -1,3 +1,5 @@
+#include <optional>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -75,6 +77,8 @@ void bind_radiosity(py::module_& m) {
       "whose right-hand-rule normal faces the point; 0 if it faces away.");
 
   py::class_<FormFactorOptions>(m, "FormFactorOptions", "Options of compute_form_factors (keywords only).")
+      .def_readwrite("skip_unneeded", &FormFactorOptions::skip_unneeded,
+                     "Skip visibility rays in a convex enclosure (default True); False traces them all.")
       .def(py::init([](int quadrature, int shadow_rays, uint64_t seed, int threads, float min_value) {
              if (quadrature != 1 && quadrature != 3 && quadrature != 7) {
                throw py::value_error("quadrature must be 1, 3 or 7 points");
@@ -154,11 +158,33 @@ void bind_radiosity(py::module_& m) {
 
   m.def(
       "compute_form_factors",
-      [](std::shared_ptr<const Scene> patches, const FormFactorOptions& options, const py::object& progress) {
+      [](std::shared_ptr<const Scene> patches, const FormFactorOptions& options, const py::object& progress,
+         const std::optional<py::array_t<uint8_t, py::array::c_style | py::array::forcecast>>& scatters,
+         const std::optional<py::array_t<uint8_t, py::array::c_style | py::array::forcecast>>& receivers) {
+        std::optional<FormFactorRows> rows;
+        if (scatters) {
+          const size_t n = patches->triangle_count();
+          rows.emplace();
+          if (scatters->ndim() != 1 || static_cast<size_t>(scatters->size()) != n) {
+            throw py::value_error("scatters needs one entry per patch");
+          }
+          rows->scatters.assign(scatters->data(), scatters->data() + n);
+          if (receivers) {
+            if (receivers->ndim() != 1 || static_cast<size_t>(receivers->size()) != n) {
+              throw py::value_error("receivers needs one entry per patch");
+            }
+            rows->receivers.assign(receivers->data(), receivers->data() + n);
+          }
+        } else if (receivers) {
+          throw py::value_error("receivers needs scatters too");
+        }
         RenderControl control;
         FormFactorStats stats;
         auto run = run_interruptible(
-            [&] { return std::make_shared<FormFactorMatrices>(compute_form_factors(*patches, options, control, stats)); },
+            [&] {
+              return std::make_shared<FormFactorMatrices>(
+                  compute_form_factors(*patches, options, control, stats, rows ? &*rows : nullptr));
+            },
             control, progress);
         if (run.keyboard_interrupt) {  // rows are missing: no partial matrix is worth keeping
           PyErr_SetNone(PyExc_KeyboardInterrupt);
@@ -168,12 +194,20 @@ void bind_radiosity(py::module_& m) {
         s["pairs_tested"] = stats.pairs_tested;
         s["pairs_facing"] = stats.pairs_facing;
         s["rays"] = stats.rays;
+        s["rays_skipped"] = stats.rays_skipped;
+        s["rows_computed"] = stats.rows_computed;
+        s["rows_skipped"] = patches->triangle_count() - stats.rows_computed;
+        s["important_patches"] = stats.important;
         s["seconds"] = stats.seconds;
         s["rays_per_second"] = stats.seconds > 0 ? static_cast<double>(stats.rays) / stats.seconds : 0.0;
         return py::make_tuple(run.result, s);
       },
-      py::arg("patches"), py::arg("options"), py::arg("progress") = py::none(),
-      "Form factors between all triangles of `patches` (one patch each): (FormFactors, stats).");
+      py::arg("patches"), py::arg("options"), py::arg("progress") = py::none(), py::kw_only(),
+      py::arg("scatters") = py::none(), py::arg("receivers") = py::none(),
+      "Form factors between the triangles of `patches` (one patch each): (FormFactors, stats). Every row, or with "
+      "scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only "
+      "those of non-zero importance for that view (form_factors.h).");
+
 
   py::class_<RadiositySystem, std::shared_ptr<RadiositySystem>>(m, "RadiositySystem",
                                                                 "M = I - diag(rho) F for 3 channels.")
@@ -240,6 +274,8 @@ void bind_radiosity(py::module_& m) {
       .value("importance", RefinementOracle::Importance);
 
   py::class_<HierarchicalOptions>(m, "HierarchicalOptions", "Options of HierarchicalSolver (keywords only).")
+      .def_readwrite("skip_unneeded", &HierarchicalOptions::skip_unneeded,
+                     "Skip visibility rays in a convex enclosure (default True); False traces them all.")
       .def(py::init([](RefinementOracle oracle, double epsilon, double min_area, int shadow_rays, int sweeps,
                        double tolerance, uint64_t seed, int threads, uint64_t max_links) {
              if (!(epsilon > 0.0)) throw py::value_error("epsilon must be > 0");
@@ -293,6 +329,7 @@ void bind_radiosity(py::module_& m) {
             d["links"] = st.links;
             d["links_refined"] = st.links_refined;
             d["rays"] = st.rays;
+            d["rays_skipped"] = st.rays_skipped;
             d["memory_bytes"] = st.memory_bytes;
             d["residual"] = st.residual;
             d["seconds"] = st.seconds;
@@ -365,6 +402,7 @@ void bind_radiosity(py::module_& m) {
              return py::make_tuple(std::array<double, 3>{p[0], p[1], p[2]}, std::array<double, 3>{d[0], d[1], d[2]});
            })
       .def_property_readonly("total_rays", &HierarchicalSolver::total_rays)
+      .def_property_readonly("total_rays_skipped", &HierarchicalSolver::total_rays_skipped)
       .def("link_coverage_error", &HierarchicalSolver::link_coverage_error, py::arg("only_facing_roots") = true,
            "Largest |covered / area - 1| of any root as seen from any leaf (0: no source missed or doubled).");
 

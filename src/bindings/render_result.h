@@ -20,6 +20,8 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["samples"] = s.samples;
   d["rays"] = s.rays;
   d["skipped_connections"] = s.skipped_connections;
+  d["skipped_shadow_rays"] = s.skipped_shadow_rays;
+  d["unoccluded"] = s.unoccluded;
   d["invalid_samples"] = s.invalid_samples;
   d["spp"] = s.spp;
   d["seconds"] = s.seconds;
@@ -79,6 +81,8 @@ inline py::dict mlt_result_dict(MltResult&& r, int width, int height, uint32_t d
   stats["direct_spp"] = direct_spp > 0 ? r.direct.spp : 0u;  // fewer than asked when time-limited
   stats["direct_seconds"] = r.direct.seconds;
   stats["rays"] = r.stats.rays + r.direct.rays;
+  stats["skipped_connections"] = r.stats.skipped_connections + r.direct.skipped_connections;
+  stats["skipped_shadow_rays"] = r.stats.skipped_shadow_rays + r.direct.skipped_shadow_rays;
   d["stats"] = stats;
   return d;
 }

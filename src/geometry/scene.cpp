@@ -62,6 +62,12 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
       emitter_pmf_by_prim_[emissive_[i]] = emitter_distribution_.pmf(i);
     }
   }
+  bool specular = false, dielectric = false;
+  for (const uint32_t m : material_of_) {
+    specular = specular || is_delta(materials_[m].bsdf);
+    dielectric = dielectric || std::holds_alternative<Dielectric>(materials_[m].bsdf);
+  }
+  features_ = compute_scene_features(positions_, triangles_, normal_, specular, dielectric, emissive_.size());
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 

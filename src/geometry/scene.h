@@ -9,6 +9,7 @@
 #include "core/ray.h"
 #include "core/sampling.h"
 #include "geometry/embree_accel.h"
+#include "geometry/scene_features.h"
 #include "materials/bsdf.h"
 
 namespace dualight {
@@ -52,6 +53,8 @@ class Scene {
   size_t emitter_count() const { return emissive_.size(); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
+  // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
+  const SceneFeatures& features() const { return features_; }
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
@@ -83,6 +86,7 @@ class Scene {
   std::vector<float> emitter_pmf_by_prim_;    // selection probability, 0 for non-emitters
   DiscreteDistribution emitter_distribution_;  // over emissive_, proportional to power
   Vec3 bounds_min_, bounds_max_;
+  SceneFeatures features_;
   std::unique_ptr<EmbreeAccel> accel_;
 };
 

@@ -6,6 +6,7 @@
 
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/pixel_driver.h"
+#include "pathspace/shadow_ray.h"
 
 namespace dualight {
 
@@ -24,7 +25,8 @@ RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const 
   }
   RenderResult result{Film(camera.width(), camera.height()), {}};
   if (options.strategy_images) result.film.add_layers(bdpt_strategies(options.max_depth).size());
-  const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true};
+  const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true,
+                                  connections_unoccluded(scene, camera, options.skip_unneeded)};
   tbb::enumerable_thread_specific<Subpaths> workspaces;
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList& splats) {
     return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &result.film);

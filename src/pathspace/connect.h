@@ -11,6 +11,7 @@
 #pragma once
 #include "pathspace/path.h"
 #include "pathspace/render_stats.h"
+#include "pathspace/shadow_ray.h"
 
 namespace dualight {
 
@@ -41,8 +42,7 @@ inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, 
     ++counters.skipped_connections;
     return L;
   }
-  ++counters.rays;
-  return scene.visible_point(qs.p, qs.n, camera.origin()) ? L : Color(0.f);
+  return shadow_ray_visible_point(scene, qs.p, qs.n, camera.origin(), counters) ? L : Color(0.f);
 }
 
 template <class Sampler>
@@ -82,8 +82,7 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
     ++counters.skipped_connections;
     return L;
   }
-  ++counters.rays;
-  return scene.visible(pt.p, pt.n, qs.p, qs.prim) ? L : Color(0.f);
+  return shadow_ray_visible(scene, pt.p, pt.n, qs.p, qs.prim, counters) ? L : Color(0.f);
 }
 
 }  // namespace dualight

@@ -14,6 +14,9 @@ struct EstimatorOptions {
   int threads = 0;          // 0 = all cores
   double time_limit = 0.0;  // seconds; 0 = none
   SamplerType sampler = SamplerType::Independent;
+  // Skip work the scene makes pointless (shadow rays in a convex enclosure, mutations that
+  // cannot apply); false does it all, for benchmarks and checks of the skips themselves.
+  bool skip_unneeded = true;
 };
 
 }  // namespace dualight

@@ -1,4 +1,5 @@
 #include "pathspace/full_path.h"
+#include "pathspace/shadow_ray.h"
 
 #include <cmath>
 
@@ -122,10 +123,9 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
 }
 
 bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
-  ++counters.rays;
-  if (b.type == VertexType::Camera) return scene.visible_point(a.p, a.n, b.p);
-  if (a.type == VertexType::Camera) return scene.visible_point(b.p, b.n, a.p);
-  return scene.visible(a.p, a.n, b.p, b.prim);
+  if (b.type == VertexType::Camera) return shadow_ray_visible_point(scene, a.p, a.n, b.p, counters);
+  if (a.type == VertexType::Camera) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
+  return shadow_ray_visible(scene, a.p, a.n, b.p, b.prim, counters);
 }
 
 bool sample_scatter(const Vertex& v, const Vec3& wo, TransportMode mode, Point2 u, Vec3& wi) {

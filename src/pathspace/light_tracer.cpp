@@ -48,7 +48,8 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   RenderStats stats;
-  std::atomic<uint64_t> rays{0}, skipped{0};
+  std::atomic<uint64_t> rays{0}, skipped{0}, skipped_shadow{0};
+  const bool unoccluded = connections_unoccluded(scene, camera, opt.skip_unneeded);
   uint64_t invalid = 0;
   uint64_t traced = 0;
   uint64_t pass_chunks = 4;
@@ -70,7 +71,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
       SplatList& splats = chunk_splats[chunk];
       splats.clear();
       Path path;
-      TraceCounters local;
+      TraceCounters local = trace_counters(unoccluded);
       for (uint64_t i = first; i < last; ++i) {
         if ((i & 255u) == 0 && control.cancelled()) break;
         trace_particle<Sampler>(scene, camera, opt, i, path, splats, local);
@@ -78,6 +79,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
       }
       rays.fetch_add(local.rays, std::memory_order_relaxed);
       skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
+      skipped_shadow.fetch_add(local.skipped_shadow_rays, std::memory_order_relaxed);
       control.done.fetch_add(chunk_particles[chunk], std::memory_order_relaxed);
     });
     // A cancelled pass keeps only its complete prefix of chunks, so the particle count is exact.
@@ -95,6 +97,8 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   stats.seconds = elapsed();
   stats.rays = rays.load();
   stats.skipped_connections = skipped.load();
+  stats.skipped_shadow_rays = skipped_shadow.load();
+  stats.unoccluded = unoccluded;
   stats.invalid_samples = invalid;
   stats.interrupted = control.cancelled();
   stats.samples = traced;

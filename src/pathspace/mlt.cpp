@@ -18,6 +18,7 @@
 #include "pathspace/mutations/caustic_perturbation.h"
 #include "pathspace/mutations/lens_perturbation.h"
 #include "pathspace/mutations/lens_subpath.h"
+#include "pathspace/shadow_ray.h"
 #include "pathspace/start_up.h"
 
 namespace dualight {
@@ -109,14 +110,14 @@ template <class Elapsed>
 PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt,
                                  const MltOptions& opt, const std::vector<double>& direct, size_t wanted,
                                  double seconds, const Elapsed& elapsed, const RenderControl& control,
-                                 std::atomic<uint64_t>& rays, size_t& count) {
+                                 SharedTraceCounters& rays, size_t& count) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
   const uint64_t seed = hash_combine(opt.seed, kPilotStream);
   std::vector<std::vector<std::pair<uint32_t, double>>> blocks((wanted + kSampleBlock - 1) / kSampleBlock);
   count = run_sample_blocks(opt.threads, wanted, std::min(wanted, 2 * kSampleBlock), seconds, elapsed, control,
                             [&](size_t block, size_t begin, size_t end) {
                               Subpaths paths;
-                              TraceCounters counters;
+                              TraceCounters counters = rays.local();
                               for (size_t i = begin; i < end; ++i) {
                                 bootstrap_sample(scene, camera, bdpt, seed, i, paths, counters,
                                                  [&](int, int, const Color& c, float mis, const Vertex&,
@@ -125,7 +126,7 @@ PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera
                                                                               weight_of(c, mis));
                                                  });
                               }
-                              rays.fetch_add(counters.rays, std::memory_order_relaxed);
+                              rays.add(counters);
                             });
   // Per pixel: the direct light's luminance plus the pilot's (sum over samples landing there,
   // over the sample count: the chains' image has the same units, its luminance summing to b).
@@ -148,16 +149,21 @@ PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera
 // The mutations and their selection weights; a path picks among those that suit it.
 class MutationSet {
  public:
-  MutationSet(const MltOptions& opt, const PinholeCamera& camera) {
+  // Without mirrors or glass no path has a specular vertex, and the caustic and multi-chain
+  // perturbations suit none: they are left out (and reported) instead of asked at every step.
+  MutationSet(const MltOptions& opt, const PinholeCamera& camera, const SceneFeatures& scene) {
+    const bool needs_specular = !opt.skip_unneeded || scene.specular;
     const float r_max = opt.lens_radius_max > 0.f ? opt.lens_radius_max : 0.1f * static_cast<float>(camera.width());
     const PerturbationRange film{std::min(opt.lens_radius_min, r_max), r_max};
     const PerturbationRange angle{opt.angle_min, opt.angle_max};
     add(std::make_unique<BidirectionalMutation>(), opt.bidirectional);
     add(std::make_unique<LensSubpathMutation>(), opt.lens_subpath);
     add(std::make_unique<EyePerturbation>(false, film, angle), opt.lens_perturbation);
-    add(std::make_unique<CausticPerturbation>(angle), opt.caustic_perturbation);
-    add(std::make_unique<EyePerturbation>(true, film, angle), opt.multi_chain_perturbation);
+    add(std::make_unique<CausticPerturbation>(angle), opt.caustic_perturbation, needs_specular);
+    add(std::make_unique<EyePerturbation>(true, film, angle), opt.multi_chain_perturbation, needs_specular);
   }
+  // Mutations enabled by their weight but left out because the scene cannot use them.
+  const std::vector<std::string>& skipped() const { return skipped_; }
   size_t size() const { return mutations_.size(); }
   const Mutation& operator[](size_t i) const { return *mutations_[i]; }
   // Total weight of the mutations that suit x.
@@ -190,12 +196,14 @@ class MutationSet {
   }
 
  private:
-  void add(std::unique_ptr<Mutation> m, float weight) {
+  void add(std::unique_ptr<Mutation> m, float weight, bool useful = true) {
+    if (weight > 0.f && !useful) skipped_.push_back(m->name());
     mutations_.push_back(std::move(m));
-    weights_.push_back(weight);
+    weights_.push_back(useful ? weight : 0.f);
   }
   std::vector<std::unique_ptr<Mutation>> mutations_;
   std::vector<float> weights_;
+  std::vector<std::string> skipped_;
 };
 
 // T(y -> x) / T(x -> y) as the acceptance uses it; the wrong forms are negative controls.
@@ -229,9 +237,10 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   MltStats& mlt = result.mlt;
   std::vector<double> image(3 * pixels, 0.0);      // direct light, then the chains' estimate
   std::vector<double> chain_sum(3 * pixels, 0.0);  // the chains' splats, over all mutations
-  const MutationSet mutations(opt, camera);
+  const MutationSet mutations(opt, camera, scene.features());
   for (size_t i = 0; i < mutations.size(); ++i) out.mutations.push_back({mutations[i].name(), 0, 0, 0});
-  std::atomic<uint64_t> rays{0};
+  out.skipped_mutations = mutations.skipped();
+  SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
   if (opt.direct_spp > 0) {
     const RenderResult direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control,
                                                     kDirectShare * opt.time_limit);
@@ -256,14 +265,14 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
     std::vector<double> weight(n_boot, 0.0);
     const auto bootstrap_block = [&](size_t, size_t begin, size_t end) {
       Subpaths paths;
-      TraceCounters counters;
+      TraceCounters counters = rays.local();
       for (size_t i = begin; i < end; ++i) {
         bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
                          [&](int, int, const Color& c, float mis, const Vertex&, const Point2& raster) {
                            weight[i] += weight_of(c, mis) * importance(pixel_of(camera, raster));
                          });
       }
-      rays.fetch_add(counters.rays, std::memory_order_relaxed);
+      rays.add(counters);
     };
     // At least 8 blocks under a time limit: b's interval stays within a few per cent.
     const size_t n_done = run_sample_blocks(opt.threads, n_boot, std::min(n_boot, 8 * kSampleBlock),
@@ -279,7 +288,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
       // Start states: a bootstrap sample in proportion to its weight, then one of its strategies.
       const DiscreteDistribution pick(weight);
       Subpaths paths;
-      TraceCounters counters;
+      TraceCounters counters = rays.local();
       for (size_t c = 0; c < n_chains; ++c) {
         Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), c), {}};
         for (int attempt = 0; attempt < 16 && chain.current.target <= 0.0; ++attempt) {
@@ -304,7 +313,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
         // the image; the others share its mutations.
         if (chain.current.target > 0.0) chains.push_back(std::move(chain));
       }
-      rays.fetch_add(counters.rays, std::memory_order_relaxed);
+      rays.add(counters);
     }
 
     // Rounds: each chain mutates its share; splats merge in chain order.
@@ -319,7 +328,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
       parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
         const uint64_t share = rounds.share(c);
         Chain& chain = chains[c];
-        TraceCounters counters;
+        TraceCounters counters = rays.local();
         const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
         SplatList& splats = splat_lists[c];
         splats.clear();
@@ -359,7 +368,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
             ++stat.accepted;
           }
         }
-        rays.fetch_add(counters.rays, std::memory_order_relaxed);
+        rays.add(counters);
         control.done.fetch_add(done[c], std::memory_order_relaxed);
       });
       // In chain order, so that the sums do not depend on the schedule.
@@ -393,7 +402,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
   }
   RenderStats& stats = result.stats;
   stats.seconds = elapsed();
-  stats.rays = rays.load();
+  rays.into(stats);
   stats.samples = total;
   stats.spp = static_cast<uint32_t>(total / pixels);
   stats.interrupted = control.cancelled();

@@ -62,6 +62,7 @@ struct MutationStats {
 struct PathMltResult {
   MltResult result;  // b is the bootstrap's (MLT has no large steps to refine it)
   std::vector<MutationStats> mutations;
+  std::vector<std::string> skipped_mutations;  // enabled, but the scene cannot use them
 };
 
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,

@@ -3,6 +3,7 @@
 #include "core/frame.h"
 #include "core/sampling.h"
 #include "pathspace/pixel_driver.h"
+#include "pathspace/shadow_ray.h"
 
 namespace dualight {
 
@@ -62,8 +63,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
         if (is_black(f)) {
           ++counters.skipped_connections;
         } else {
-          ++counters.rays;
-          if (scene.visible(hit.p, ns, es.p, es.prim)) {
+          if (shadow_ray_visible(scene, hit.p, ns, es.p, es.prim, counters)) {
             const float pdf_light_w = es.pdf_a * dist2 / cos_light;
             const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
             const float weight = power_heuristic(pdf_light_w, pdf_bsdf_w);
@@ -95,7 +95,8 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                          RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit};
+  const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, false,
+                                  connections_unoccluded(scene, camera, options.skip_unneeded)};
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
     return trace_path(scene, camera.generate_ray(x, y), options, sampler, counters);
   };

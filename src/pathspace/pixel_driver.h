@@ -13,6 +13,7 @@
 #include "film/film.h"
 #include "film/splat_list.h"
 #include "pathspace/render_stats.h"
+#include "pathspace/shadow_ray.h"
 
 namespace dualight {
 
@@ -22,6 +23,7 @@ struct PixelDriverOptions {
   int threads = 0;
   double time_limit = 0.0;
   bool light_paths = false;  // every sample also traces one light path that may splat
+  bool unoccluded = false;   // connections need no shadow rays (shadow_ray.h)
 };
 
 // estimate(x, y, sampler, counters, splats) returns the sample value for film position (x, y)
@@ -40,7 +42,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   const bool unbounded = opt.spp == 0;
   control.total.store(unbounded ? 0 : n_pixels * opt.spp);
 
-  std::atomic<uint64_t> rays{0}, skipped{0}, invalid{0};
+  std::atomic<uint64_t> rays{0}, skipped{0}, skipped_shadow{0}, invalid{0};
   std::vector<SplatList> tile_splats(opt.light_paths ? n_tiles : 0);
   std::vector<uint64_t> tile_samples(n_tiles, 0);
   SplatList no_splats;  // estimators without light paths never add to it
@@ -60,7 +62,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     const double pass_start = elapsed();
     parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
       const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
-      TraceCounters local;
+      TraceCounters local = trace_counters(opt.unoccluded);
       uint64_t local_invalid = 0;
       SplatList& splats = opt.light_paths ? tile_splats[tile] : no_splats;
       splats.clear();
@@ -88,6 +90,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
       }
       rays.fetch_add(local.rays, std::memory_order_relaxed);
       skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
+      skipped_shadow.fetch_add(local.skipped_shadow_rays, std::memory_order_relaxed);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
     if (opt.light_paths) {
@@ -109,6 +112,8 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   stats.seconds = elapsed();
   stats.rays = rays.load();
   stats.skipped_connections = skipped.load();
+  stats.skipped_shadow_rays = skipped_shadow.load();
+  stats.unoccluded = opt.unoccluded;
   stats.invalid_samples = invalid.load();
   stats.interrupted = control.cancelled();
   const std::vector<uint32_t> counts = film.sample_counts();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/distribution.h"
+#include "pathspace/shadow_ray.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/primary_sample_sampler.h"
@@ -132,13 +133,13 @@ struct Chain {
 template <class MakeEvaluator, class Elapsed>
 std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& opt, uint64_t seed, size_t n,
                               double seconds, const Elapsed& elapsed, RenderControl& control,
-                              std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+                              SharedTraceCounters& rays, std::atomic<uint64_t>& invalid) {
   std::vector<double> f(n, 0.0);
   const size_t done = run_sample_blocks(opt.threads, n, std::min(n, 8 * kSampleBlock), seconds, elapsed, control,
                                         [&](size_t, size_t begin, size_t end) {
                                           auto evaluate = make();
                                           Contribution c;
-                                          TraceCounters counters;
+                                          TraceCounters counters = rays.local();
                                           for (size_t i = begin; i < end; ++i) {
                                             PrimarySampleSampler sampler(seed, i, opt.sigma,
                                                                          opt.large_step_probability);
@@ -146,7 +147,7 @@ std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& op
                                             evaluate(sampler, c, counters);
                                             f[i] = c.f;
                                           }
-                                          rays.fetch_add(counters.rays, std::memory_order_relaxed);
+                                          rays.add(counters);
                                           invalid.fetch_add(evaluate.invalid(), std::memory_order_relaxed);
                                         });
   f.resize(done);
@@ -186,7 +187,7 @@ template <class MakeEvaluator>
 Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const std::vector<double>& f_boot,
                       uint64_t boot_seed, uint64_t chain_seed, size_t n_chains, uint64_t target, double deadline,
                       double b_splat, size_t pixels, const std::function<double()>& elapsed, RenderControl& control,
-                      std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+                      SharedTraceCounters& rays, std::atomic<uint64_t>& invalid) {
   Population pop;
   pop.metropolis.assign(3 * pixels, 0.0);
   if (opt.large_step_mis) pop.large.assign(3 * pixels, 0.0);
@@ -195,7 +196,7 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
   chains.reserve(n_chains);
   {
     auto evaluate = make();
-    TraceCounters counters;
+    TraceCounters counters = rays.local();
     for (size_t c = 0; c < n_chains; ++c) {
       Pcg32 rng(chain_seed, c);
       float u = rng.next_float();
@@ -207,7 +208,7 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
       chain.sampler.reseed(hash_combine(chain_seed, 1), c);
       chains.push_back(std::move(chain));
     }
-    rays.fetch_add(counters.rays, std::memory_order_relaxed);
+    rays.add(counters);
   }
   const float b = static_cast<float>(b_splat), p_large = opt.large_step_probability;
   // What a state's h is multiplied by, before its weight a, 1 - a or L (see above).
@@ -222,7 +223,7 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
       Chain& chain = chains[c];
       auto evaluate = make();
       Contribution proposed;
-      TraceCounters counters;
+      TraceCounters counters = rays.local();
       SplatList& splats = out[c];
       splats.clear();
       done[c] = 0;
@@ -256,7 +257,7 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
         }
         ++done[c];
       }
-      rays.fetch_add(counters.rays, std::memory_order_relaxed);
+      rays.add(counters);
       invalid.fetch_add(evaluate.invalid() + splats.invalid(), std::memory_order_relaxed);
       control.done.fetch_add(done[c], std::memory_order_relaxed);
     });
@@ -326,7 +327,8 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   MltStats& mlt = result.mlt;
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
   std::vector<double> image(3 * pixels, 0.0);  // direct light, then each population's estimate
-  std::atomic<uint64_t> rays{0}, invalid{0};
+  SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
+  std::atomic<uint64_t> invalid{0};
   if (!render_direct(scene, camera, opt, result, image, control)) {
     const uint64_t target = pixels * opt.spp;  // 0: until the time limit
     control.total.store(target);
@@ -426,7 +428,7 @@ MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const P
   result.image.assign(image.begin(), image.end());
   RenderStats& stats = result.stats;
   stats.seconds = elapsed();
-  stats.rays = rays.load();
+  rays.into(stats);
   stats.invalid_samples = invalid.load();
   stats.samples = mlt.mutations;
   stats.spp = static_cast<uint32_t>(mlt.mutations / pixels);

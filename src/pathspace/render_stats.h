@@ -1,5 +1,6 @@
 // What every image estimator reports besides its image.
 #pragma once
+#include <atomic>
 #include <cstdint>
 
 #include "film/film.h"
@@ -12,9 +13,15 @@ struct TraceCounters {
   // Connections (shadow rays) not traced because they cannot carry light: a specular vertex at
   // an end, a zero BSDF or emission term, or a point outside the camera's view.
   uint64_t skipped_connections = 0;
+  // Connections that needed no shadow ray: the scene is a convex enclosure holding the camera
+  // (scene_features.h), so nothing can stand between two vertices that face each other.
+  uint64_t skipped_shadow_rays = 0;
+  // Not a count: whether this task's connections are known unoccluded (shadow_ray.h).
+  bool unoccluded = false;
   TraceCounters& operator+=(const TraceCounters& o) {
     rays += o.rays;
     skipped_connections += o.skipped_connections;
+    skipped_shadow_rays += o.skipped_shadow_rays;
     return *this;
   }
 };
@@ -23,11 +30,39 @@ struct RenderStats {
   uint64_t samples = 0;          // camera samples (paths) completed
   uint64_t rays = 0;             // closest-hit and shadow rays traced
   uint64_t skipped_connections = 0;  // see TraceCounters
+  uint64_t skipped_shadow_rays = 0;  // see TraceCounters
+  bool unoccluded = false;           // connections were known unoccluded: no shadow rays at all
   uint64_t invalid_samples = 0;  // NaN/Inf path contributions, zeroed and counted
   uint32_t spp = 0;              // samples per pixel completed by every pixel
   double seconds = 0.0;
   bool interrupted = false;
   bool time_limited = false;     // stopped by time_limit before reaching spp
+};
+
+// TraceCounters summed over threads, and the `unoccluded` setting handed to each task's own.
+class SharedTraceCounters {
+ public:
+  explicit SharedTraceCounters(bool unoccluded) : unoccluded_(unoccluded) {}
+  TraceCounters local() const {
+    TraceCounters c;
+    c.unoccluded = unoccluded_;
+    return c;
+  }
+  void add(const TraceCounters& c) {
+    rays_.fetch_add(c.rays, std::memory_order_relaxed);
+    skipped_connections_.fetch_add(c.skipped_connections, std::memory_order_relaxed);
+    skipped_shadow_rays_.fetch_add(c.skipped_shadow_rays, std::memory_order_relaxed);
+  }
+  void into(RenderStats& stats) const {
+    stats.rays = rays_.load();
+    stats.skipped_connections = skipped_connections_.load();
+    stats.skipped_shadow_rays = skipped_shadow_rays_.load();
+    stats.unoccluded = unoccluded_;
+  }
+
+ private:
+  bool unoccluded_;
+  std::atomic<uint64_t> rays_{0}, skipped_connections_{0}, skipped_shadow_rays_{0};
 };
 
 struct RenderResult {

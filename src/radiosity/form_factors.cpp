@@ -134,12 +134,16 @@ double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 trian
 }
 
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
-                               FormFactorStats& stats) {
+                               FormFactorStats& stats, const FormFactorRows* wanted) {
   if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
   const std::vector<QuadraturePoint> rule = triangle_rule(options.quadrature);
   const auto n = static_cast<uint32_t>(patches.triangle_count());
+  if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {
+    throw std::invalid_argument("scatters and receivers need one entry per patch");
+  }
   control.total.store(n);
   const auto start = std::chrono::steady_clock::now();
+  const bool unoccluded = options.skip_unneeded && patches.features().convex_enclosure;
 
   struct Corners {
     D3 v[3];
@@ -154,80 +158,115 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
     std::vector<float> vals;
   };
   std::vector<Row> rows(n);
-  std::atomic<uint64_t> tested{0}, facing{0}, rays{0};
+  std::atomic<uint64_t> tested{0}, facing{0}, rays{0}, rays_skipped{0};
   const int sqrt_rays = static_cast<int>(std::lround(std::sqrt(options.shadow_rays)));
   const bool square_strata = sqrt_rays * sqrt_rays == options.shadow_rays;
 
-  constexpr size_t kRowsPerTask = 16;
-  parallel_for_each_index(options.threads, (n + kRowsPerTask - 1) / kRowsPerTask, [&](size_t task) {
-    uint64_t local_tested = 0, local_facing = 0, local_rays = 0;
-    std::vector<D3> points(rule.size());
-    std::vector<double> kernel(rule.size());
-    for (uint32_t i = static_cast<uint32_t>(task * kRowsPerTask);
-         i < std::min<uint64_t>(n, (task + 1) * kRowsPerTask) && !control.cancelled(); ++i) {
-      const Corners& ti = tri[i];
-      const D3 ni = to_d3(patches.normal(i));
-      const Vec3 ni_f = patches.normal(i);
-      for (size_t k = 0; k < rule.size(); ++k) {
-        const QuadraturePoint& q = rule[k];
-        points[k] = {q.b0 * ti.v[0].x + q.b1 * ti.v[1].x + q.b2 * ti.v[2].x,
-                     q.b0 * ti.v[0].y + q.b1 * ti.v[1].y + q.b2 * ti.v[2].y,
-                     q.b0 * ti.v[0].z + q.b1 * ti.v[1].z + q.b2 * ti.v[2].z};
-      }
-      Row& row = rows[i];
-      for (uint32_t j = 0; j < n; ++j) {
-        if (j == i) continue;  // a planar patch does not see itself
-        const Corners& tj = tri[j];
-        // Exact culls: the planes are shared by all points of each patch.
-        if (!corner_in_front(ti.v[0], ni, tj.v)) continue;  // j behind or in i's plane
-        const D3 nj = cross3(sub(tj.v[1], tj.v[0]), sub(tj.v[2], tj.v[0]));
-        if (!corner_in_front(tj.v[0], nj, ti.v)) continue;  // i behind or in j's plane
-        ++local_tested;
-        double unoccluded = 0.0;
-        for (size_t k = 0; k < rule.size(); ++k) {
-          kernel[k] = form_factor_to_polygon(points[k], ni, tj.v, 3);
-          unoccluded += rule[k].weight * kernel[k];
-        }
-        if (!(unoccluded > 0.0)) continue;
-        ++local_facing;
-        double value = unoccluded;
-        if (options.shadow_rays > 0) {
-          Pcg32 rng(hash_combine(options.seed, i), j);
-          value = 0.0;
-          for (size_t k = 0; k < rule.size(); ++k) {
-            if (!(kernel[k] > 0.0)) continue;
-            const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y),
-                         static_cast<float>(points[k].z));
-            int visible = 0;
-            for (int s = 0; s < options.shadow_rays; ++s) {
-              // Stratified points on the source triangle (a jittered grid in the unit square).
-              Point2 u{rng.next_float(), rng.next_float()};
-              if (square_strata) {
-                u = {(static_cast<float>(s % sqrt_rays) + u.u) / static_cast<float>(sqrt_rays),
-                     (static_cast<float>(s / sqrt_rays) + u.v) / static_cast<float>(sqrt_rays)};
-              } else {
-                u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
-              }
-              const Point2 b = shadow_ray_target(u);
-              const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
-                             patches.vertex(j, 2) * b.v;
-              visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
-            }
-            local_rays += static_cast<uint64_t>(options.shadow_rays);
-            value += rule[k].weight * kernel[k] * visible / options.shadow_rays;
-          }
-        }
-        if (value > options.min_value && value > 0.0) {
-          row.cols.push_back(j);
-          row.vals.push_back(static_cast<float>(value));
-        }
-      }
-      control.done.fetch_add(1, std::memory_order_relaxed);
+  const auto compute_row = [&](uint32_t i, std::vector<D3>& points, std::vector<double>& kernel, uint64_t& local_tested,
+                               uint64_t& local_facing, uint64_t& local_rays, uint64_t& local_skipped) {
+    const Corners& ti = tri[i];
+    const D3 ni = to_d3(patches.normal(i));
+    const Vec3 ni_f = patches.normal(i);
+    for (size_t k = 0; k < rule.size(); ++k) {
+      const QuadraturePoint& q = rule[k];
+      points[k] = {q.b0 * ti.v[0].x + q.b1 * ti.v[1].x + q.b2 * ti.v[2].x,
+                   q.b0 * ti.v[0].y + q.b1 * ti.v[1].y + q.b2 * ti.v[2].y,
+                   q.b0 * ti.v[0].z + q.b1 * ti.v[1].z + q.b2 * ti.v[2].z};
     }
-    tested.fetch_add(local_tested);
-    facing.fetch_add(local_facing);
-    rays.fetch_add(local_rays);
-  });
+    Row& row = rows[i];
+    for (uint32_t j = 0; j < n; ++j) {
+      if (j == i) continue;  // a planar patch does not see itself
+      const Corners& tj = tri[j];
+      // Exact culls: the planes are shared by all points of each patch.
+      if (!corner_in_front(ti.v[0], ni, tj.v)) continue;  // j behind or in i's plane
+      const D3 nj = cross3(sub(tj.v[1], tj.v[0]), sub(tj.v[2], tj.v[0]));
+      if (!corner_in_front(tj.v[0], nj, ti.v)) continue;  // i behind or in j's plane
+      ++local_tested;
+      double unoccluded_value = 0.0;
+      for (size_t k = 0; k < rule.size(); ++k) {
+        kernel[k] = form_factor_to_polygon(points[k], ni, tj.v, 3);
+        unoccluded_value += rule[k].weight * kernel[k];
+      }
+      if (!(unoccluded_value > 0.0)) continue;
+      ++local_facing;
+      double value = unoccluded_value;
+      if (options.shadow_rays > 0 && unoccluded) {
+        for (size_t k = 0; k < rule.size(); ++k) {
+          if (kernel[k] > 0.0) local_skipped += static_cast<uint64_t>(options.shadow_rays);
+        }
+      } else if (options.shadow_rays > 0) {
+        Pcg32 rng(hash_combine(options.seed, i), j);
+        value = 0.0;
+        for (size_t k = 0; k < rule.size(); ++k) {
+          if (!(kernel[k] > 0.0)) continue;
+          const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y),
+                       static_cast<float>(points[k].z));
+          int visible = 0;
+          for (int s = 0; s < options.shadow_rays; ++s) {
+            // Stratified points on the source triangle (a jittered grid in the unit square).
+            Point2 u{rng.next_float(), rng.next_float()};
+            if (square_strata) {
+              u = {(static_cast<float>(s % sqrt_rays) + u.u) / static_cast<float>(sqrt_rays),
+                   (static_cast<float>(s / sqrt_rays) + u.v) / static_cast<float>(sqrt_rays)};
+            } else {
+              u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
+            }
+            const Point2 b = shadow_ray_target(u);
+            const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
+                           patches.vertex(j, 2) * b.v;
+            visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
+          }
+          local_rays += static_cast<uint64_t>(options.shadow_rays);
+          value += rule[k].weight * kernel[k] * visible / options.shadow_rays;
+        }
+      }
+      if (value > options.min_value && value > 0.0) {
+        row.cols.push_back(j);
+        row.vals.push_back(static_cast<float>(value));
+      }
+    }
+  };
+
+  // The rows to compute: all, those of patches that reflect, or waves of important patches.
+  std::vector<uint32_t> todo;
+  std::vector<uint8_t> important;
+  for (uint32_t i = 0; i < n; ++i) {
+    const bool scatters = !wanted || wanted->scatters[i];
+    const bool receives = !wanted || wanted->receivers.empty() || wanted->receivers[i];
+    if (scatters && receives) todo.push_back(i);
+  }
+  if (wanted && !wanted->receivers.empty()) important = wanted->receivers;
+  uint64_t computed = 0;
+  constexpr size_t kRowsPerTask = 16;
+  while (!todo.empty() && !control.cancelled()) {
+    parallel_for_each_index(options.threads, (todo.size() + kRowsPerTask - 1) / kRowsPerTask, [&](size_t task) {
+      uint64_t local_tested = 0, local_facing = 0, local_rays = 0, local_skipped = 0;
+      std::vector<D3> points(rule.size());
+      std::vector<double> kernel(rule.size());
+      for (size_t r = task * kRowsPerTask; r < std::min(todo.size(), (task + 1) * kRowsPerTask) && !control.cancelled();
+           ++r) {
+        compute_row(todo[r], points, kernel, local_tested, local_facing, local_rays, local_skipped);
+        control.done.fetch_add(1, std::memory_order_relaxed);
+      }
+      tested.fetch_add(local_tested);
+      facing.fetch_add(local_facing);
+      rays.fetch_add(local_rays);
+      rays_skipped.fetch_add(local_skipped);
+    });
+    computed += todo.size();
+    if (important.empty()) break;
+    // The next wave: patches first seen from this one's rows that reflect (in row order, so
+    // the waves do not depend on the schedule).
+    std::vector<uint32_t> next;
+    for (const uint32_t i : todo) {
+      for (const uint32_t j : rows[i].cols) {
+        if (important[j]) continue;
+        important[j] = 1;
+        if (wanted->scatters[j]) next.push_back(j);
+      }
+    }
+    todo = std::move(next);
+  }
 
   CsrMatrix F;
   F.n = n;
@@ -243,8 +282,12 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
   stats.pairs_tested = tested.load();
   stats.pairs_facing = facing.load();
   stats.rays = rays.load();
+  stats.rays_skipped = rays_skipped.load();
+  stats.rows_computed = computed;
+  stats.important = important.empty() ? n : static_cast<uint64_t>(std::count(important.begin(), important.end(), 1));
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.interrupted = control.cancelled();
+  if (!stats.interrupted) control.done.store(n);
   return F;
 }
 

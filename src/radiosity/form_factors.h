@@ -26,12 +26,30 @@ struct FormFactorOptions {
   uint64_t seed = 0;
   int threads = 0;
   float min_value = 0.f;   // entries below this are dropped (0 keeps every non-zero)
+  // Skip work the scene makes pointless: visibility rays in a convex enclosure (scene_features.h:
+  // facing patches always see each other there); false traces them all.
+  bool skip_unneeded = true;
 };
+
+// Which rows of F a solve needs (the rest are left empty). Row i serves only B_i = E_i +
+// rho_i sum_j F_ij B_j, so a patch that reflects nothing needs none; and for one view, only the
+// patches with non-zero importance (I = R + F^T diag(rho) I) matter: those the camera sees and,
+// recursively, those seen from an important patch that reflects. Their rows are computed in
+// waves, each revealing the next patches through its non-zero entries, so the others' rows are
+// never computed and their B and I are exact for the view: B_i on important patches, I_i = 0
+// elsewhere.
+struct FormFactorRows {
+  std::vector<uint8_t> scatters;   // per patch: rho_i > 0
+  std::vector<uint8_t> receivers;  // per patch: R_i > 0; empty when every patch is wanted
+}; 
 
 struct FormFactorStats {
   uint64_t pairs_tested = 0;   // (i, j) pairs whose kernel was evaluated
   uint64_t pairs_facing = 0;   // pairs with a non-zero unoccluded form factor
   uint64_t rays = 0;
+  uint64_t rays_skipped = 0;     // visibility rays not needed (convex enclosure)
+  uint64_t rows_computed = 0;    // rows of F computed; the others were not needed
+  uint64_t important = 0;        // patches of non-zero importance (view-only rows), else all
   double seconds = 0.0;
   bool interrupted = false;
 };
@@ -62,8 +80,9 @@ double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 trian
 // pairs, which must treat coincident and overlapping coplanar patches as coplanar.
 bool some_corner_in_front(const Vec3& p, const Vec3& n, const Vec3 corners[3]);
 
-// Every row i of F for the triangles of `patches` (one patch per triangle).
+// Rows of F for the triangles of `patches` (one patch per triangle): every row, or those `rows`
+// selects.
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
-                               FormFactorStats& stats);
+                               FormFactorStats& stats, const FormFactorRows* rows = nullptr);
 
 }  // namespace dualight

@@ -67,17 +67,19 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
 
   // Initial links between every pair of input triangles that face each other and see each other.
   std::vector<std::vector<Link>> per_root(roots_);
-  std::atomic<uint64_t> rays{0};
+  std::atomic<uint64_t> rays{0}, skipped{0};
   parallel_for_each_index(options_.threads, roots_, [&](size_t i) {
-    uint64_t local = 0;
+    uint64_t local = 0, local_skipped = 0;
     for (uint32_t j = 0; j < roots_; ++j) {
       if (j == i || !facing(elements_[i], elements_[j])) continue;
-      const Link l = make_link(static_cast<uint32_t>(i), j, local);
+      const Link l = make_link(static_cast<uint32_t>(i), j, local, local_skipped);
       if (l.F > 0.f || l.F_oracle > 0.f) per_root[i].push_back(l);
     }
     rays.fetch_add(local);
+    skipped.fetch_add(local_skipped);
   });
   rays_ += rays.load();
+  rays_skipped_ += skipped.load();
   for (auto& v : per_root) links_.insert(links_.end(), v.begin(), v.end());
   assign_receiver();
 }
@@ -87,7 +89,8 @@ bool HierarchicalSolver::facing(const Element& a, const Element& b) const {
   return some_corner_in_front(a.v[0], a.normal, b.v) && some_corner_in_front(b.v[0], b.normal, a.v);
 }
 
-HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const {
+HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32_t source, uint64_t& rays,
+                                                      uint64_t& rays_skipped) const {
   const Element& r = elements_[receiver];
   const Element& s = elements_[source];
   // Receiver-side 7-point rule (degree 5, Radon), exact contour integral over the source, each
@@ -105,6 +108,11 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
   }
   Link link{receiver, source, static_cast<float>(F), static_cast<float>(F), static_cast<float>(F)};
   if (!(F > 0.0) || options_.shadow_rays == 0) return link;
+  if (options_.skip_unneeded && scene_.features().convex_enclosure) {
+    // Facing elements of a convex enclosure always see each other (scene_features.h).
+    for (int k = 0; k < 7; ++k) rays_skipped += kernel[k] > 0.0 ? 2 * static_cast<uint64_t>(options_.shadow_rays) : 0;
+    return link;
+  }
   Pcg32 rng(hash_combine(options_.seed, (static_cast<uint64_t>(receiver) << 32) | source), iteration_);
   const int n = options_.shadow_rays;  // per receiver point
   auto visible_estimate = [&] {
@@ -218,7 +226,7 @@ void HierarchicalSolver::push_pull_importance(uint32_t e, const double down[3]) 
 HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   const auto t0 = std::chrono::steady_clock::now();
   HierarchicalStep st;
-  const uint64_t rays_before = rays_;
+  const uint64_t rays_before = rays_, skipped_before = rays_skipped_;
 
   // Refine (from the second step on: the oracles need a solution).
   if (iteration_ > 0) {
@@ -280,17 +288,20 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
       }
     }
     std::vector<Link> created(pending.size());
-    std::atomic<uint64_t> rays{0};
+    std::atomic<uint64_t> rays{0}, skipped{0};
     constexpr size_t kChunk = 256;
     parallel_for_each_index(options_.threads, (pending.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
-      uint64_t local = 0;
+      uint64_t local = 0, local_skipped = 0;
       for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
         const auto [r, s] = pending[k];
-        created[k] = facing(elements_[r], elements_[s]) ? make_link(r, s, local) : Link{r, s, 0.f, 0.f, 0.f};
+        created[k] =
+            facing(elements_[r], elements_[s]) ? make_link(r, s, local, local_skipped) : Link{r, s, 0.f, 0.f, 0.f};
       }
       rays.fetch_add(local);
+      skipped.fetch_add(local_skipped);
     });
     rays_ += rays.load();
+    rays_skipped_ += skipped.load();
     for (const Link& l : created) {
       // A link the oracle sees as occluded is never refined: dropping it when the transport
       // estimate is 0 too loses nothing.
@@ -355,6 +366,7 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
                                                   [](const Element& e) { return e.first_child < 0; }));
   st.links = links_.size();
   st.rays = rays_ - rays_before;
+  st.rays_skipped = rays_skipped_ - skipped_before;
   st.memory_bytes = elements_.size() * sizeof(Element) + links_.capacity() * sizeof(Link);
   st.residual = change;
   st.converged = iteration_ > 1 && st.links_refined == 0 && !st.link_limit;

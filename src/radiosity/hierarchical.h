@@ -30,11 +30,13 @@ struct HierarchicalOptions {
   uint64_t seed = 0;
   int threads = 0;
   uint64_t max_links = 20000000;  // refinement stops before exceeding this (about 0.5 GiB)
+  bool skip_unneeded = true;      // no visibility rays in a convex enclosure (scene_features.h)
 };
 
 struct HierarchicalStep {
   uint64_t iteration = 0;
   uint64_t elements = 0, leaves = 0, links = 0, links_refined = 0, rays = 0;
+  uint64_t rays_skipped = 0;  // visibility rays not needed (convex enclosure)
   uint64_t memory_bytes = 0;
   double residual = 0.0;  // largest relative change of B or W in the last sweep
   double seconds = 0.0;
@@ -75,6 +77,7 @@ class HierarchicalSolver {
   // <R, B>_A and <W, E>_A per channel.
   void measurements(double primal[3], double dual[3]) const;
   uint64_t total_rays() const { return rays_; }
+  uint64_t total_rays_skipped() const { return rays_skipped_; }
   // For tests: over all leaves and all other roots, the largest |covered area / root area - 1|,
   // where "covered" sums the areas of that root's elements linked (before visibility culling) to
   // the leaf or its ancestors. 0 means every source is seen exactly once from every leaf.
@@ -104,7 +107,7 @@ class HierarchicalSolver {
     float F_unoccluded;
   };
 
-  Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays) const;
+  Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays, uint64_t& rays_skipped) const;
   bool facing(const Element& a, const Element& b) const;
   void subdivide(uint32_t e);
   void gather_sweep_radiosity();
@@ -121,7 +124,7 @@ class HierarchicalSolver {
   std::vector<Element> elements_;
   std::vector<Link> links_;
   uint32_t roots_;
-  uint64_t iteration_ = 0, rays_ = 0;
+  uint64_t iteration_ = 0, rays_ = 0, rays_skipped_ = 0;
   double emitted_radiosity_max_ = 0.0;  // luminance of the brightest emitter's radiosity
 };
 

@@ -58,6 +58,7 @@ class HierarchicalStep:
     seconds: float
     converged: bool
     link_limit: bool
+    rays_skipped: int = 0  # visibility rays a convex enclosure made unneeded
 
 
 def receiver_samples(
@@ -112,6 +113,10 @@ class HierarchicalSolver:
     max_links:
         Refinement stops before this many links (steps report ``link_limit``; the solution is
         then not converged).
+    skip:
+        Skip visibility rays where the scene makes them pointless (a convex enclosure, see
+        :attr:`dualight.Scene.features`); steps report ``rays_skipped``. ``False`` traces
+        them all.
     """
 
     def __init__(
@@ -129,6 +134,7 @@ class HierarchicalSolver:
         seed: int = 0,
         threads: int = 0,
         max_links: int = 20_000_000,
+        skip: bool = True,
     ) -> None:
         if oracle not in ("bf", "importance"):
             raise ValueError(f"oracle must be 'bf' or 'importance', got {oracle!r}")
@@ -154,6 +160,7 @@ class HierarchicalSolver:
             threads=threads,
             max_links=max_links,
         )
+        options.skip_unneeded = bool(skip)
         self._core = _core.HierarchicalSolver(scene._compile(), prim, b1, b2, weight, options)
         self.setup_seconds = time.perf_counter() - start
         self.history: list[HierarchicalStep] = []
@@ -211,6 +218,7 @@ class HierarchicalSolver:
             "leaves": n,
             "links": last.links if last else 0,
             "rays": int(self._core.total_rays),
+            "skipped": {"visibility_rays": int(self._core.total_rays_skipped)},
             "memory_bytes": last.memory_bytes if last else 0,
             "seconds": self.setup_seconds + sum(h.seconds for h in self.history),
         }

@@ -110,6 +110,8 @@ class Solution:
     stats: dict[str, Any] = field(default_factory=dict)
     history: dict[str, list[Any]] = field(default_factory=dict)
     link_density: np.ndarray | None = None  # hierarchical: links per unit area at each patch
+    # view_only solves: the patches whose B was solved (non-zero importance); None = all.
+    solved: np.ndarray | None = None
 
     @property
     def areas(self) -> np.ndarray:
@@ -201,6 +203,11 @@ class Solution:
             seed=seed,
         )
         idx = np.maximum(prim, 0)
+        if self.solved is not None and not np.all(self.solved[idx[visible]]):
+            raise ValueError(
+                "this camera sees patches whose radiosity was not solved: the solution was "
+                "computed for one view only (view_only=True)"
+            )
 
         def sample(values: np.ndarray) -> np.ndarray:
             if smooth:
@@ -264,16 +271,49 @@ def form_factors(
     seed: int = 0,
     threads: int = 0,
     progress: Callable[[int, int], None] | None = None,
+    skip: bool = True,
+    receivers: np.ndarray | None = None,
 ) -> tuple[_core.FormFactors, dict[str, Any]]:
-    """Form factors of all patch pairs (sparse) and stats (pairs, rays, seconds, rays/s,
-    reciprocity and closure errors)."""
+    """Form factors of patch pairs (sparse) and stats (pairs, rays, seconds, rays/s,
+    reciprocity and closure errors).
+
+    With ``skip`` (the default), work that cannot matter is left out and counted in
+    ``stats["skipped"]``: visibility rays in a convex enclosure (facing patches always see
+    each other there), rows of patches that reflect nothing (their radiosity is their
+    emission), and, given ``receivers`` (``R_i > 0`` per patch: the view that is wanted),
+    rows of patches of zero importance for that view. Skipped rows are empty; the
+    reciprocity and closure checks then cover the rows that were computed.
+    """
     options = _core.FormFactorOptions(
         quadrature=quadrature, shadow_rays=shadow_rays, seed=seed, threads=threads
     )
-    F, stats = _core.compute_form_factors(patches._compile(), options, progress)
-    stats = dict(stats)
+    options.skip_unneeded = skip
+    scatters = receivers_arg = None
+    if skip:
+        scatters = (np.max(patches.reflectance, axis=1) > 0).astype(np.uint8)
+        if receivers is not None:
+            receivers_arg = (np.asarray(receivers).reshape(len(patches), -1) > 0).any(axis=1)
+            receivers_arg = receivers_arg.astype(np.uint8)
+    elif receivers is not None:
+        raise ValueError("receivers (view-only rows) needs skip=True")
+    F, raw = _core.compute_form_factors(
+        patches._compile(), options, progress, scatters=scatters, receivers=receivers_arg
+    )
+    raw = dict(raw)
+    stats: dict[str, Any] = {
+        k: raw[k]
+        for k in ("pairs_tested", "pairs_facing", "rays", "seconds", "rays_per_second")
+    }
     stats.update(quadrature=quadrature, shadow_rays=shadow_rays, nonzeros=int(F.nonzeros))
-    stats.update(form_factor_checks(F, patches.areas))
+    stats["important_patches"] = int(raw["important_patches"])
+    stats["view_only"] = receivers is not None
+    stats["skipped"] = {
+        "enabled": skip,
+        "visibility_rays": int(raw["rays_skipped"]),
+        "rows": int(raw["rows_skipped"]),
+    }
+    if raw["rows_skipped"] == 0:
+        stats.update(form_factor_checks(F, patches.areas))
     return F, stats
 
 
@@ -324,6 +364,8 @@ def solve(
     epsilon: float = 1e-3,
     min_area: float | None = None,
     max_links: int = 20_000_000,
+    view_only: bool = False,
+    skip: bool = True,
 ) -> Solution:
     """Solve the radiosity system of a diffuse scene and, with ``importance``, its dual.
 
@@ -353,8 +395,28 @@ def solve(
         Hierarchical only: refinement oracle (``"importance"`` or ``"bf"``), its relative
         threshold, the smallest element area and a cap on links; ``max_iter`` bounds the
         refine-and-solve iterations and ``tol`` the change per sweep.
+    view_only:
+        Only the camera's view is wanted: form factors are computed only for patches of
+        non-zero importance (those the camera sees and, recursively, those seen from an
+        important patch that reflects), in waves. ``B`` is then exact on those patches and
+        left at ``E`` elsewhere (``solution.solved`` marks which), and ``I`` is exact
+        everywhere; the measurement is unchanged. Drawing the solution from a camera that
+        sees an unsolved patch raises ``ValueError``.
+    skip:
+        Leave out work that cannot matter (see :func:`form_factors`); ``stats["skipped"]``
+        says what. ``False`` computes everything (for measuring what skipping saves).
     """
     _check_solve_arguments(scene, camera, tol, max_iter, seed)
+    for name, flag in (("view_only", view_only), ("skip", skip)):
+        if not isinstance(flag, bool):
+            raise TypeError(f"{name} must be True or False, got {flag!r}")
+    if view_only and not skip:
+        raise ValueError("view_only=True skips rows: it needs skip=True")
+    if view_only and method == "hierarchical":
+        raise ValueError(
+            "view_only applies to the patch solvers; hierarchical radiosity already refines "
+            "by importance"
+        )
     if method == "hierarchical":
         from dualight.radiosity.hierarchical import HierarchicalSolver
 
@@ -370,6 +432,7 @@ def solve(
             seed=seed,
             threads=threads or 0,
             max_links=max_links,
+            skip=skip,
         )
         solver.solve(max_iter=min(max_iter, 100))
         if not solver.converged:
@@ -403,6 +466,12 @@ def solve(
         callback = bar
     elif callable(progress):
         callback = progress
+    R = receiver(patches, cam, window=window, seed=seed)
+    if precomputed is not None and precomputed[1].get("view_only"):
+        raise ValueError(
+            "precomputed form factors were computed for one view only (view_only=True): "
+            "they lack the rows other views need"
+        )
     try:
         F, ff_stats = precomputed or form_factors(
             patches,
@@ -411,13 +480,14 @@ def solve(
             seed=seed,
             threads=n_threads,
             progress=callback,
+            skip=skip,
+            receivers=R if view_only else None,
         )
     finally:
         if bar is not None:
             bar.close()
     system = _core.RadiositySystem(F, patches.reflectance, patches.areas)
     E = patches.emission
-    R = receiver(patches, cam, window=window, seed=seed)
     R3 = np.repeat(R[:, None], 3, axis=1)
 
     stats: dict[str, Any] = {"patches": len(patches), "form_factors": ff_stats, "method": method}
@@ -454,6 +524,12 @@ def solve(
     )
     stats["solve_seconds"] = time.perf_counter() - solve_start
     stats["seconds"] = time.perf_counter() - start
+    stats["skipped"] = dict(ff_stats.get("skipped", {}))
+    solved = None
+    if view_only:
+        # Important patches: those seen (R > 0) and every column of the rows computed.
+        seen_from_rows = np.bincount(np.asarray(F.indices), minlength=len(patches)) > 0
+        solved = (R > 0) | seen_from_rows
     return Solution(
         patches=patches,
         B=B,
@@ -465,4 +541,5 @@ def solve(
         method=method,
         stats=stats,
         history=history,
+        solved=solved,
     )

@@ -1,0 +1,50 @@
+// What a scene holds, computed once when the Scene is built, so that estimators and solvers can
+// skip work that cannot contribute (and say so in their statistics):
+//   specular / dielectric   delta BSDFs present (radiosity needs none; MLT's caustic and
+//                           multi-chain perturbations need some);
+//   closed                  every edge is shared by exactly two triangles, in opposite
+//                           directions (a watertight, consistently oriented surface: no light
+//                           leaves it);
+//   convex_enclosure        every vertex lies on or in front of every triangle's plane. Then two
+//                           points on the front sides of surfaces, or a front-side point and a
+//                           point inside the enclosure (a camera), see each other whenever they
+//                           face each other: the segment between them stays in the intersection
+//                           of the front half-spaces, which no triangle's interior can cross.
+//                           Shadow rays (and form-factor visibility rays) are then not needed.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace dualight {
+
+struct Plane {
+  Vec3 n;     // unit normal
+  float d;    // dot(n, x) = d on the plane
+};
+
+struct SceneFeatures {
+  bool specular = false;    // some mirror or dielectric
+  bool dielectric = false;  // some dielectric (light can pass behind a surface)
+  bool closed = false;
+  bool convex_enclosure = false;
+  bool convexity_checked = false;  // false when the scene was too large to check (then not convex)
+  uint64_t emitter_triangles = 0;
+  std::vector<Plane> planes;  // the distinct triangle planes (for the enclosure test of a point)
+  float tolerance = 0.f;      // distances below this count as "on the plane"
+
+  bool all_diffuse() const { return !specular; }
+  // Whether any two path vertices that face each other are mutually visible: a convex enclosure
+  // without glass (refraction would carry paths behind a surface, outside the enclosure).
+  bool unoccluded() const { return convex_enclosure && !dielectric; }
+  // Whether p lies strictly inside the convex enclosure (in front of every plane).
+  bool encloses(const Vec3& p) const;
+};
+
+// positions: xyz per vertex; triangles: 3 indices each; normals: unit normal per triangle.
+SceneFeatures compute_scene_features(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                                     const std::vector<Vec3>& normals, bool specular, bool dielectric,
+                                     uint64_t emitter_triangles);
+
+}  // namespace dualight

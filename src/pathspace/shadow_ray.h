@@ -1,0 +1,46 @@
+// Shadow rays of path connections, skipped where the scene makes them pointless: in a convex
+// enclosure without glass that holds the camera (scene_features.h) every vertex of a path lies
+// on the front side of a surface or at the camera, and two such points that face each other
+// cannot be separated by any triangle. Each skipped ray is counted, so a render says what it
+// left out, and `skip_unneeded = false` traces them all (for benchmarks and checks).
+#pragma once
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+// Whether a render with this camera may skip its shadow rays.
+inline bool connections_unoccluded(const Scene& scene, const PinholeCamera& camera, bool skip_unneeded) {
+  return skip_unneeded && scene.features().unoccluded() && scene.features().encloses(camera.origin());
+}
+
+inline TraceCounters trace_counters(bool unoccluded) {
+  TraceCounters c;
+  c.unoccluded = unoccluded;
+  return c;
+}
+
+// Scene::visible, or true without a ray when the counters say connections are unoccluded.
+inline bool shadow_ray_visible(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target,
+                               TraceCounters& counters) {
+  if (counters.unoccluded) {
+    ++counters.skipped_shadow_rays;
+    return true;
+  }
+  ++counters.rays;
+  return scene.visible(p0, n0, p1, target);
+}
+
+// Scene::visible_point (p1 in free space, the camera), likewise.
+inline bool shadow_ray_visible_point(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1,
+                                     TraceCounters& counters) {
+  if (counters.unoccluded) {
+    ++counters.skipped_shadow_rays;
+    return true;
+  }
+  ++counters.rays;
+  return scene.visible_point(p0, n0, p1);
+}
+
+}  // namespace dualight
