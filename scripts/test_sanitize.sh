@@ -19,7 +19,7 @@ SITE=$BUILD/site
 # deterministic MLT render stands in for them.
 PYTEST_FILES=${PYTEST_FILES:-"tests/test_scene.py tests/test_image.py tests/test_materials.py \
 tests/test_sampler.py tests/test_path_tracer.py tests/test_bdpt.py tests/test_form_factors.py \
-tests/test_radiosity.py tests/test_hierarchical.py \
+tests/test_radiosity.py tests/test_hierarchical.py tests/test_skipping.py \
 tests/test_mlt_path_space.py::test_mlt_is_deterministic_and_reports_each_mutation \
 tests/test_mlt_mutations.py::test_single_mutation_hook_rejects_unknown_names"}
 
