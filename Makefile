@@ -3,7 +3,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
-.PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics clean
+.PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
 
 setup: $(VENV)/.setup-done
 $(VENV)/.setup-done: scripts/setup.sh
@@ -21,8 +21,8 @@ demo: install
 
 # pytest runs last: its summary is the closing line CI reads.
 test: install cpp-test
-	$(VENV)/bin/ruff check python tests benchmarks
-	$(PY) -m pytest -q
+	$(VENV)/bin/ruff check python tests benchmarks notebooks
+	$(PY) -m pytest -q --nbmake
 
 # C++ unit tests (tests/cpp) through ctest, in their own incremental build folder.
 cpp-test: setup
@@ -64,6 +64,13 @@ bench-topics: install
 	$(PY) benchmarks/bench_hierarchical.py
 	$(PY) benchmarks/bench_bdpt.py
 	$(PY) benchmarks/bench_mlt.py
+
+# Regenerates python/dualight/_core.pyi from the built extension (commit the result; the
+# tests check that it names everything _core exports).
+stubs: install
+	$(PY) -m pybind11_stubgen dualight._core -o build/stubs \
+	  --enum-class-locations "MisHeuristic|RefinementOracle|SamplerType|TransportMode|BsdfKind:dualight._core"
+	cp build/stubs/dualight/_core.pyi python/dualight/_core.pyi
 
 clean:
 	rm -rf build out $(VENV)/.installed

@@ -184,6 +184,7 @@ def _count(method: str, stats: dict[str, Any], pixels: int) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Run ``python -m dualight bench`` with parsed ``args``; returns the exit code."""
     budgets = [float(b) for b in args.budgets.split(",")]
     names = [s for s in args.scenes.split(",") if s]
     methods = [m for m in args.methods.split(",") if m]
@@ -282,6 +283,7 @@ def equal_time_table(summary: dict[str, Any], budget: float) -> dict[str, dict[s
 
 
 def markdown_table(summary: dict[str, Any]) -> str:
+    """The equal-time efficiency table (relative to BDPT) as markdown."""
     table = summary["equal_time"]
     names = list(table)
     methods = [m for m in (*MC_METHODS, *RADIOSITY_LEVELS) if any(m in table[n] for n in names)]
@@ -310,6 +312,7 @@ def markdown_table(summary: dict[str, Any]) -> str:
 
 
 def plot(summary: dict[str, Any], path: Path) -> None:
+    """Write log relMSE against log seconds, one panel per scene, to ``path``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -344,6 +347,7 @@ def plot(summary: dict[str, Any], path: Path) -> None:
 
 
 def add_parser(sub: Any) -> None:
+    """Add the ``bench`` subcommand to the ``python -m dualight`` argument parser."""
     p = sub.add_parser("bench", help="error against run time for every method on the scene set")
     p.add_argument("--budgets", default="0.5,1,2,4", help="seconds per render, comma-separated")
     p.add_argument("--scenes", default=",".join(SCENE_SET))

@@ -75,14 +75,17 @@ class Image:
 
     @property
     def shape(self) -> tuple[int, int, int]:
+        """``(height, width, 3)``."""
         return self._pixels.shape  # type: ignore[return-value]
 
     @property
     def width(self) -> int:
+        """Width in pixels."""
         return self._pixels.shape[1]
 
     @property
     def height(self) -> int:
+        """Height in pixels."""
         return self._pixels.shape[0]
 
     def luminance(self) -> np.ndarray:

@@ -97,10 +97,12 @@ class Camera:
 
     @property
     def width(self) -> int:
+        """Image width in pixels."""
         return self.resolution[0]
 
     @property
     def height(self) -> int:
+        """Image height in pixels."""
         return self.resolution[1]
 
     def with_resolution(self, width: int, height: int) -> Camera:
@@ -159,6 +161,7 @@ class Mesh:
 
     @property
     def is_emitter(self) -> bool:
+        """Whether the mesh emits (some emission channel > 0)."""
         return any(e > 0.0 for e in self.emission)
 
 
@@ -215,6 +218,7 @@ class Scene:
 
     @property
     def camera(self) -> Camera | None:
+        """The scene's camera, or None (then render and solve need ``camera=``)."""
         return self._camera
 
     @camera.setter
@@ -225,14 +229,17 @@ class Scene:
 
     @property
     def meshes(self) -> tuple[Mesh, ...]:
+        """The meshes in the order they were added."""
         return tuple(self._meshes)
 
     @property
     def triangle_count(self) -> int:
+        """Triangles over all meshes."""
         return sum(len(m.triangles) for m in self._meshes)
 
     @property
     def has_emitters(self) -> bool:
+        """Whether some mesh emits."""
         return any(m.is_emitter for m in self._meshes)
 
     @property

@@ -182,6 +182,7 @@ class HierarchicalSolver:
 
     @property
     def converged(self) -> bool:
+        """Whether the last step refined nothing."""
         return bool(self.history) and self.history[-1].converged
 
     def measurements(self) -> tuple[np.ndarray, np.ndarray]:

@@ -157,6 +157,7 @@ class PatchMesh:
 
     @property
     def scene(self) -> Scene:
+        """The scene the patches subdivide."""
         return self._scene
 
     def _compile(self) -> _core.Scene:

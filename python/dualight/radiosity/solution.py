@@ -115,10 +115,12 @@ class Solution:
 
     @property
     def areas(self) -> np.ndarray:
+        """Patch areas, one per patch."""
         return self.patches.areas
 
     @property
     def rho(self) -> np.ndarray:
+        """Patch reflectances, RGB per patch."""
         return self.patches.reflectance
 
     @property

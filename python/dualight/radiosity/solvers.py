@@ -35,14 +35,17 @@ class _Stepped:
     name = "solver"
 
     def step(self) -> Step:
+        """One iteration (for the direct solver: the whole LU solve); returns its Step."""
         raise NotImplementedError
 
     @property
     def residual(self) -> float:
+        """Relative residual ``max |b - M x| / max |b|`` of the current solution."""
         raise NotImplementedError
 
     @property
     def solution(self) -> np.ndarray:
+        """The current solution, one RGB row per patch."""
         raise NotImplementedError
 
     def solve(self, tol: float = 1e-6, max_iter: int = 1000) -> list[Step]:
@@ -70,11 +73,13 @@ class _CoreStepped(_Stepped):
         self._core = core_solver
 
     def step(self) -> Step:
+        """One iteration (for the direct solver: the whole LU solve); returns its Step."""
         s = self._core.step()
         return Step(int(s["iteration"]), float(s["residual"]), float(s["seconds"]))
 
     @property
     def residual(self) -> float:
+        """Relative residual ``max |b - M x| / max |b|`` of the current solution."""
         return float(self._core.residual)
 
     @property
@@ -83,6 +88,7 @@ class _CoreStepped(_Stepped):
 
     @property
     def solution(self) -> np.ndarray:
+        """The current solution, one RGB row per patch."""
         return self._core.solution
 
 
@@ -147,6 +153,7 @@ class SouthwellSolver(_CoreStepped):
 
     @property
     def shots(self) -> int:
+        """Patches shot so far."""
         return int(self._core.shots)
 
 
@@ -178,6 +185,7 @@ class DirectSolver(_Stepped):
         return self._factors
 
     def step(self) -> Step:
+        """One iteration (for the direct solver: the whole LU solve); returns its Step."""
         start = time.perf_counter()
         self._x = self._factors.solve(self._rhs, dual=self._dual)
         self._residual = self._system.residual(self._x, self._rhs, dual=self._dual)
@@ -186,10 +194,12 @@ class DirectSolver(_Stepped):
 
     @property
     def residual(self) -> float:
+        """Relative residual ``max |b - M x| / max |b|`` of the current solution."""
         return self._residual
 
     @property
     def solution(self) -> np.ndarray:
+        """The current solution, one RGB row per patch."""
         return self._x
 
 

@@ -1,0 +1,650 @@
+"""
+dualight's compiled core; use the `dualight` package instead of this module.
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['BdptOptions', 'Bsdf', 'BsdfKind', 'DirectSolver', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'sampler_points', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
+class Scene:
+    """
+    Immutable triangle scene committed to Embree (built by dualight.Scene).
+    """
+    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None) -> None:
+        """
+        Triangles with one material per row of reflectance and emission. kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) are optional per-material arrays; reflectance is the diffuse albedo or the mirror's reflectance.
+        """
+    def encloses(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> bool:
+        """
+        Whether point lies strictly inside the scene's convex enclosure (False if none).
+        """
+    def intersect(self, origins: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], directions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> tuple[numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.int64]]:
+        """
+        Closest hits of rays: (t, triangle index or -1); directions need not be normalised.
+        """
+    @property
+    def bounds(self) -> tuple[typing.Annotated[list[float], "FixedSize(3)"], typing.Annotated[list[float], "FixedSize(3)"]]:
+        ...
+    @property
+    def emitter_count(self) -> int:
+        ...
+    @property
+    def features(self) -> dict:
+        """
+        What the scene holds, computed once at construction (see scene_features.h).
+        """
+    @property
+    def triangle_count(self) -> int:
+        ...
+class PinholeCamera:
+    """
+    Pinhole camera (built by dualight.Camera).
+    """
+    def __init__(self, origin: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], target: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], up: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], fov: typing.SupportsFloat | typing.SupportsIndex, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def generate_ray(self, x: typing.SupportsFloat | typing.SupportsIndex, y: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[list[float], "FixedSize(3)"], typing.Annotated[list[float], "FixedSize(3)"]]:
+        """
+        Ray (origin, unit direction) through film position (x, y) in pixels.
+        """
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def width(self) -> int:
+        ...
+class BsdfKind:
+    """
+    Kinds of BSDF; the values index the arrays of Scene(kind=...).
+    
+    Members:
+    
+      lambertian
+    
+      mirror
+    
+      dielectric
+    """
+    __members__: typing.ClassVar[dict[str, BsdfKind]]
+    dielectric: typing.ClassVar[BsdfKind]
+    lambertian: typing.ClassVar[BsdfKind]
+    mirror: typing.ClassVar[BsdfKind]
+    @typing.overload
+    def __eq__(self, other: BsdfKind) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: BsdfKind) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class TransportMode:
+    """
+    Which quantity a path carries (radiance from lights, importance from the camera).
+    
+    Members:
+    
+      radiance
+    
+      importance
+    """
+    __members__: typing.ClassVar[dict[str, TransportMode]]
+    importance: typing.ClassVar[TransportMode]
+    radiance: typing.ClassVar[TransportMode]
+    @typing.overload
+    def __eq__(self, other: TransportMode) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: TransportMode) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Bsdf:
+    """
+    One BSDF in its local frame (z = geometric normal, the exterior side for a dielectric); vectorised for tests. Directions point away from the surface.
+    """
+    def __init__(self, kind: BsdfKind, *, reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], ior: typing.SupportsFloat | typing.SupportsIndex = 1.5) -> None:
+        ...
+    def eval_f(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], mode: TransportMode = TransportMode.radiance) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        The BSDF value f(wo, wi) (N, 3); 0 for delta BSDFs.
+        """
+    def pdf_w(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], mode: TransportMode = TransportMode.radiance) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        Solid-angle density (N,) of sample() producing wi given wo; 0 for delta BSDFs.
+        """
+    def sample(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], u: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], mode: TransportMode = TransportMode.radiance) -> dict:
+        """
+        Sample wi for each row of wo (N, 3) with random numbers u (N, 2): a dict of wi (N, 3), weight = f |cos wi| / pdf (N, 3), pdf_w (N,) (the lobe's probability when delta), delta (N,) and valid (N,), False where sampling failed (the other fields are then 0).
+        """
+    @property
+    def is_delta(self) -> bool:
+        ...
+    @property
+    def kind(self) -> BsdfKind:
+        ...
+class SamplerType:
+    """
+    Members:
+    
+      independent
+    
+      sobol
+    """
+    __members__: typing.ClassVar[dict[str, SamplerType]]
+    independent: typing.ClassVar[SamplerType]
+    sobol: typing.ClassVar[SamplerType]
+    @typing.overload
+    def __eq__(self, other: SamplerType) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: SamplerType) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class PathTracerOptions:
+    """
+    Options of the path tracer (keywords only).
+    """
+    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
+        ...
+    @property
+    def max_depth(self) -> int:
+        ...
+    @property
+    def rr_depth(self) -> int:
+        ...
+    @property
+    def sampler(self) -> SamplerType:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip work the scene makes pointless (default True); False does it all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+    @property
+    def spp(self) -> int:
+        ...
+    @property
+    def threads(self) -> int:
+        ...
+    @property
+    def time_limit(self) -> float:
+        ...
+class MisHeuristic:
+    """
+    Members:
+    
+      power
+    
+      balance
+    """
+    __members__: typing.ClassVar[dict[str, MisHeuristic]]
+    balance: typing.ClassVar[MisHeuristic]
+    power: typing.ClassVar[MisHeuristic]
+    @typing.overload
+    def __eq__(self, other: MisHeuristic) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: MisHeuristic) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class LightTracerOptions:
+    """
+    Options of the light tracer (keywords only).
+    """
+    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip work the scene makes pointless (default True); False does it all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class BdptOptions:
+    """
+    Options of bidirectional path tracing (keywords only).
+    """
+    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent, heuristic: MisHeuristic = MisHeuristic.power, strategy_images: bool = False) -> None:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip work the scene makes pointless (default True); False does it all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class PssmltOptions:
+    """
+    Options of primary-sample-space MLT (keywords only).
+    """
+    def __init__(self, *, mutations_per_pixel: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, bootstrap: typing.SupportsInt | typing.SupportsIndex = 100000, chains: typing.SupportsInt | typing.SupportsIndex = 256, sigma: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, large_step_probability: typing.SupportsFloat | typing.SupportsIndex = 0.30000001192092896, large_step_mis: bool = True, heuristic: MisHeuristic = MisHeuristic.power, direct_spp: typing.SupportsInt | typing.SupportsIndex = 128, multiplexed: bool = False) -> None:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip work the scene makes pointless (default True); False does it all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class MltOptions:
+    """
+    Options of path-space Metropolis light transport (keywords only).
+    """
+    def __init__(self, *, mutations_per_pixel: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, bootstrap: typing.SupportsInt | typing.SupportsIndex = 100000, chains: typing.SupportsInt | typing.SupportsIndex = 256, heuristic: MisHeuristic = MisHeuristic.power, direct_spp: typing.SupportsInt | typing.SupportsIndex = 128, bidirectional: typing.SupportsFloat | typing.SupportsIndex = 1.0, lens_subpath: typing.SupportsFloat | typing.SupportsIndex = 0.25, lens_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, caustic_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, multi_chain_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, lens_radius_min: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, lens_radius_max: typing.SupportsFloat | typing.SupportsIndex = 0.0, angle_min: typing.SupportsFloat | typing.SupportsIndex = 9.999999747378752e-05, angle_max: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, importance: str = 'luminance') -> None:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip work the scene makes pointless (default True); False does it all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class FormFactorOptions:
+    """
+    Options of compute_form_factors (keywords only).
+    """
+    def __init__(self, *, quadrature: typing.SupportsInt | typing.SupportsIndex = 3, shadow_rays: typing.SupportsInt | typing.SupportsIndex = 4, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, min_value: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def quadrature(self) -> int:
+        ...
+    @property
+    def shadow_rays(self) -> int:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip visibility rays in a convex enclosure (default True); False traces them all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class FormFactors:
+    """
+    Sparse form factors F (CSR) and F^T.
+    """
+    @staticmethod
+    def from_csr(n: typing.SupportsInt | typing.SupportsIndex, indptr: typing.Annotated[numpy.typing.ArrayLike, numpy.uint64], indices: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], values: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> FormFactors:
+        ...
+    def checks(self, areas: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        Reciprocity A_i F_ij = A_j F_ji and row-sum (closure) summaries.
+        """
+    def row_sums(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def indices(self) -> numpy.typing.NDArray[numpy.uint32]:
+        ...
+    @property
+    def indptr(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    @property
+    def n(self) -> int:
+        ...
+    @property
+    def nonzeros(self) -> int:
+        ...
+    @property
+    def values(self) -> numpy.typing.NDArray[numpy.float32]:
+        ...
+class RadiositySystem:
+    """
+    M = I - diag(rho) F for 3 channels.
+    """
+    def __init__(self, form_factors: FormFactors, reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], areas: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
+        ...
+    def residual(self, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False) -> float:
+        """
+        max |b - M x| / max |b| (M^T when dual).
+        """
+    @property
+    def size(self) -> int:
+        ...
+class JacobiSolver:
+    """
+    Jacobi sweeps (gathering); dual=True solves M^T x = b.
+    """
+    def __init__(self, system: RadiositySystem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def step(self) -> dict:
+        ...
+    @property
+    def iteration(self) -> int:
+        ...
+    @property
+    def residual(self) -> float:
+        ...
+    @property
+    def solution(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class GaussSeidelSolver:
+    """
+    Gauss-Seidel sweeps (gathering).
+    """
+    def __init__(self, system: RadiositySystem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False) -> None:
+        ...
+    def step(self) -> dict:
+        ...
+    @property
+    def iteration(self) -> int:
+        ...
+    @property
+    def residual(self) -> float:
+        ...
+    @property
+    def solution(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class SouthwellSolver:
+    """
+    Southwell / progressive refinement (shooting).
+    """
+    def __init__(self, system: RadiositySystem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False, shots_per_step: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def step(self) -> dict:
+        ...
+    @property
+    def ambient(self) -> list[float]:
+        ...
+    @property
+    def iteration(self) -> int:
+        ...
+    @property
+    def residual(self) -> float:
+        ...
+    @property
+    def shots(self) -> int:
+        ...
+    @property
+    def solution(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def unshot(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class DirectSolver:
+    """
+    Dense LU per channel; solves M x = b and M^T x = b.
+    """
+    def __init__(self, system: RadiositySystem, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def solve(self, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def factor_seconds(self) -> float:
+        ...
+class RefinementOracle:
+    """
+    Members:
+    
+      bf
+    
+      importance
+    """
+    __members__: typing.ClassVar[dict[str, RefinementOracle]]
+    bf: typing.ClassVar[RefinementOracle]
+    importance: typing.ClassVar[RefinementOracle]
+    @typing.overload
+    def __eq__(self, other: RefinementOracle) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: RefinementOracle) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class HierarchicalOptions:
+    """
+    Options of HierarchicalSolver (keywords only).
+    """
+    def __init__(self, *, oracle: RefinementOracle = RefinementOracle.importance, epsilon: typing.SupportsFloat | typing.SupportsIndex = 0.0001, min_area: typing.SupportsFloat | typing.SupportsIndex = 0.0, shadow_rays: typing.SupportsInt | typing.SupportsIndex = 1, sweeps: typing.SupportsInt | typing.SupportsIndex = 30, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, max_links: typing.SupportsInt | typing.SupportsIndex = 20000000) -> None:
+        ...
+    @property
+    def epsilon(self) -> float:
+        ...
+    @property
+    def min_area(self) -> float:
+        ...
+    @property
+    def skip_unneeded(self) -> bool:
+        """
+        Skip visibility rays in a convex enclosure (default True); False traces them all.
+        """
+    @skip_unneeded.setter
+    def skip_unneeded(self, arg0: bool) -> None:
+        ...
+class HierarchicalSolver:
+    """
+    Hierarchical radiosity and importance (HSA91, SAS92); stepped.
+    """
+    def __init__(self, scene: Scene, receiver_prim: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], receiver_b1: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_b2: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_weight: typing.SupportsFloat | typing.SupportsIndex, options: HierarchicalOptions) -> None:
+        ...
+    def leaves(self) -> dict:
+        ...
+    def link_coverage_error(self, only_facing_roots: bool = True) -> float:
+        """
+        Largest |covered / area - 1| of any root as seen from any leaf (0: no source missed or doubled).
+        """
+    def links(self) -> dict:
+        ...
+    def measurements(self) -> tuple[typing.Annotated[list[float], "FixedSize(3)"], typing.Annotated[list[float], "FixedSize(3)"]]:
+        ...
+    def step(self, progress: typing.Any = None) -> dict:
+        ...
+    @property
+    def total_rays(self) -> int:
+        ...
+    @property
+    def total_rays_skipped(self) -> int:
+        ...
+def cast_random_rays(scene: Scene, camera: PinholeCamera, n_rays: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
+    """
+    Embree-only cast of incoherent rays (no shading): the ray-tracing limit for this scene.
+    """
+def check_mlt_bidirectional_density(scene: Scene, camera: PinholeCamera, options: MltOptions, vertex: typing.SupportsInt | typing.SupportsIndex, proposals: typing.SupportsInt | typing.SupportsIndex, region_points: typing.SupportsInt | typing.SupportsIndex = 200000) -> dict:
+    """
+    For tests: bidirectional proposals that regenerate x_vertex only, from one path (mlt_checks.h); the sum of inv_t over `proposals` estimates the region's `area`.
+    """
+def check_mlt_bootstrap_paths(scene: Scene, camera: PinholeCamera, options: MltOptions, count: typing.SupportsInt | typing.SupportsIndex) -> list:
+    """
+    For tests: (s, t, BDPT's unweighted luminance estimate, the same from the complete path's f*/p) for every strategy of `count` bootstrap samples.
+    """
+def check_mlt_perturbation_densities(scene: Scene, camera: PinholeCamera, options: MltOptions, mutation: str, samples: typing.SupportsInt | typing.SupportsIndex, proposals: typing.SupportsInt | typing.SupportsIndex, film_step: typing.SupportsFloat | typing.SupportsIndex = 0.02, angle_step: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> list:
+    """
+    For tests: (block, specular vertices, reported density, finite-difference density, |cos| at the moved vertex) per block of each comparable perturbation proposal (mlt_checks.h).
+    """
+def check_mlt_single_mutation(scene: Scene, camera: PinholeCamera, options: MltOptions, mutation: str, transition_ratio: str = 'used') -> dict:
+    """
+    For tests: MLT whose chains use only `mutation` (bidirectional included: a chain that is not ergodic but keeps f invariant), staying put on paths it does not suit. transition_ratio 'ignored' or 'inverted' breaks the acceptance on purpose (a negative control). Returns render_mlt's dict.
+    """
+def compute_form_factors(patches: Scene, options: FormFactorOptions, progress: typing.Any = None, *, scatters: typing.Annotated[numpy.typing.ArrayLike, numpy.uint8] | None = None, receivers: typing.Annotated[numpy.typing.ArrayLike, numpy.uint8] | None = None) -> tuple[FormFactors, dict]:
+    """
+    Form factors between the triangles of `patches` (one patch each): (FormFactors, stats). Every row, or with scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only those of non-zero importance for that view (form_factors.h).
+    """
+def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], eta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.float32]]:
+    """
+    Unpolarised Fresnel reflectance of a smooth interface with eta = interior / exterior IOR; cos_i < 0 arrives from the interior. Returns (R, |cos_t|, eta_ratio = IOR of the refracted side / incident side).
+    """
+def point_polygon_form_factor(point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], normal: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], polygon: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> float:
+    """
+    Unoccluded form factor from a differential area to a planar convex polygon (3-8 vertices) whose right-hand-rule normal faces the point; 0 if it faces away.
+    """
+def read_image(path: str) -> tuple[numpy.typing.NDArray[numpy.float32], dict[str, str], bool]:
+    """
+    Reads an image: (H x W x C float32 pixels, metadata dict, is_low_dynamic_range).
+    """
+def render_bdpt(scene: Scene, camera: PinholeCamera, options: BdptOptions, progress: typing.Any = None) -> dict:
+    """
+    Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.
+    """
+def render_light(scene: Scene, camera: PinholeCamera, options: LightTracerOptions, progress: typing.Any = None) -> dict:
+    """
+    Light-traces the scene (spp x pixels particles); returns dict(mean, variance, counts, light_paths, stats, keyboard_interrupt).
+    """
+def render_mlt(scene: Scene, camera: PinholeCamera, options: MltOptions, progress: typing.Any = None) -> dict:
+    """
+    Path-space MLT (Veach); returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); stats has b, b_ci95, mutations, acceptance rates and per mutation type counts.
+    """
+def render_path(scene: Scene, camera: PinholeCamera, options: PathTracerOptions, progress: typing.Any = None) -> dict:
+    """
+    Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). progress(done, total) is called about every 100 ms.
+    """
+def render_pssmlt(scene: Scene, camera: PinholeCamera, options: PssmltOptions, progress: typing.Any = None) -> dict:
+    """
+    Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); stats has b, b_ci95, mutations and acceptance rates, and when multiplexed b_per_depth, b_per_depth_ci95 and mutations_per_depth (indexed by path length).
+    """
+def sampler_points(sampler: SamplerType, seed: typing.SupportsInt | typing.SupportsIndex, pixel: typing.SupportsInt | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, dimensions_2d: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
+    """
+    The 2D samples a sampler gives one pixel: count x dimensions_2d x 2 (for tests and plots).
+    """
+def trace_camera_hits(scene: Scene, camera: PinholeCamera, samples_per_axis: typing.SupportsInt | typing.SupportsIndex = 2, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
+    """
+    Triangle hit by each stratified camera sample, (H x W x S int32, -1 = miss) and its barycentrics.
+    """
+def verify_random_subpaths(scene: Scene, camera: PinholeCamera, count: typing.SupportsInt | typing.SupportsIndex, max_depth: typing.SupportsInt | typing.SupportsIndex = 8, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
+    """
+    Builds `count` camera and light subpaths and recomputes their cached densities and throughputs (verify()); returns the largest relative differences.
+    """
+def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], metadata: collections.abc.Mapping[str, str] = {}) -> None:
+    """
+    Writes an H x W x C float image; 8-bit formats expect values already in [0, 1].
+    """
