@@ -5,8 +5,9 @@ raises a clear Python exception whose message names the problem.
 Each row is one kind of bad input: ``(id, call, exception type, message regex)``. The table
 collects the cases scattered over the area tests (``test_scene``, ``test_image``,
 ``test_radiosity``, ...) and extends them; the rows marked ``# fixed`` used to crash with an
-unrelated message, hang, or be accepted silently (see the commit that added this file). No scene
-file loader exists yet (only ``dualight.Image.load``), so the file rows are image files.
+unrelated message, hang, or be accepted silently (see the commit that added this file). The file
+rows cover images (``dualight.Image.load``) and scene files (``dualight.load_obj``,
+``dualight.load_mitsuba_xml``, ``dualight.save_mitsuba_xml``; more cases in ``test_io.py``).
 
 ``test_table_is_large_enough`` pins the count (the issue asks for at least 20 kinds) and prints
 it; ``test_valid_calls_pass`` is the control: the same calls with the bad argument put right do
@@ -191,6 +192,96 @@ FILES = [
     ),
     ("image 2 channels", lambda t: dualight.Image(np.zeros((4, 4, 2))), ValueError, "H x W x 3"),
 ]
+
+XML_LIGHT = '<shape type="rectangle"><emitter type="area"><rgb name="radiance" value="1"/>'
+
+
+def _scene_xml(tmp: Path, body: str) -> Path:
+    xml = f'<scene version="3.0.0">{XML_LIGHT}</emitter></shape>{body}</scene>'
+    return _write(tmp, "s.xml", xml.encode())
+
+
+def _obj_with_kd(tmp: Path, kd: str) -> Path:
+    _write(tmp, "a.mtl", f"newmtl m\nKd {kd}\n".encode())
+    return _write(tmp, "a.obj", b"mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n")
+
+
+SCENE_FILES = [
+    ("obj missing", lambda t: dualight.load_obj(t / "a.obj"), FileNotFoundError, "no such OBJ"),
+    (
+        "obj names a missing mtl",
+        lambda t: dualight.load_obj(_write(t, "a.obj", b"mtllib gone.mtl\nv 0 0 0\n")),
+        FileNotFoundError,
+        "no such MTL file",
+    ),
+    (
+        "obj without faces",
+        lambda t: dualight.load_obj(_write(t, "a.obj", b"plain text\n")),
+        ValueError,
+        "has no triangles",
+    ),
+    (
+        "obj binary",
+        lambda t: dualight.load_obj(_write(t, "a.obj", bytes(range(128, 256)))),
+        ValueError,
+        "cannot read OBJ file",
+    ),
+    (
+        "obj Kd > 1",
+        lambda t: dualight.load_obj(_obj_with_kd(t, "2 2 2")),
+        ValueError,
+        r"Kd.*\[0, 1\]",
+    ),
+    (
+        "xml missing",
+        lambda t: dualight.load_mitsuba_xml(t / "a.xml"),
+        FileNotFoundError,
+        "no such Mitsuba XML file",
+    ),
+    (
+        "xml malformed",
+        lambda t: dualight.load_mitsuba_xml(_write(t, "a.xml", b"<scene><shape></scene>")),
+        ValueError,
+        "not well-formed XML",
+    ),
+    (
+        "xml unsupported shape",
+        lambda t: dualight.load_mitsuba_xml(_scene_xml(t, '<shape type="disk"/>')),
+        ValueError,
+        "shape type 'disk' is not supported",
+    ),
+    (
+        "xml unsupported bsdf",
+        lambda t: dualight.load_mitsuba_xml(
+            _scene_xml(t, '<shape type="cube"><bsdf type="roughplastic"/></shape>')
+        ),
+        ValueError,
+        "BSDF type 'roughplastic' is not supported",
+    ),
+    (
+        "xml NaN",
+        lambda t: dualight.load_mitsuba_xml(
+            _scene_xml(t, '<shape type="sphere"><float name="radius" value="nan"/></shape>')
+        ),
+        ValueError,
+        "not finite",
+    ),
+    (
+        "xml names a missing ply",
+        lambda t: dualight.load_mitsuba_xml(
+            _scene_xml(t, '<shape type="ply"><string name="filename" value="x.ply"/></shape>')
+        ),
+        FileNotFoundError,
+        "no such PLY file",
+    ),
+    (
+        "save xml to missing folder",
+        lambda t: dualight.save_mitsuba_xml(_lit(), t / "no" / "a.xml"),
+        FileNotFoundError,
+        "directory does not exist",
+    ),
+]
+FILES += SCENE_FILES
 
 RENDER = [
     ("scene not a Scene", lambda: dualight.render("scene"), TypeError, "scene must be"),

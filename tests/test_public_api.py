@@ -21,6 +21,7 @@ MODULES = (
     "dualight.metrics",
     "dualight.scenes",
     "dualight.mitsuba",
+    "dualight.io",
     "dualight.bench",
     "dualight.radiosity",
     "dualight.radiosity.solution",

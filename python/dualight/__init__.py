@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import materials, metrics, radiosity, scenes
+from dualight import io, materials, metrics, radiosity, scenes
 from dualight.image import Image
+from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import Dielectric, Diffuse, Material, Mirror
 from dualight.render import METHODS, render
 from dualight.scene import Camera, Mesh, Scene
@@ -37,9 +38,14 @@ __all__ = [
     "Mirror",
     "Scene",
     "__version__",
+    "io",
+    "load_mitsuba_xml",
+    "load_obj",
     "materials",
     "metrics",
     "radiosity",
+    "read_mitsuba_settings",
     "render",
+    "save_mitsuba_xml",
     "scenes",
 ]

@@ -1,0 +1,165 @@
+"""Writing a :class:`~dualight.Scene` as a Mitsuba 3 XML file: :func:`save_mitsuba_xml`."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dualight.io._common import PathLike
+from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.scene import Scene
+
+__all__ = ["save_mitsuba_xml"]
+
+# --------------------------------------------------------------------------------------------
+# Writer
+
+
+def _fmt(values: Any) -> str:
+    return ", ".join(repr(float(x)) for x in np.atleast_1d(values))
+
+
+def _element(parent: ET.Element, tag: str, **attrib: Any) -> ET.Element:
+    return ET.SubElement(parent, tag, {k: str(v) for k, v in attrib.items()})
+
+
+def _write_bsdf(parent: ET.Element, material: Material) -> None:
+    if isinstance(material, Diffuse):
+        two = _element(parent, "bsdf", type="twosided")
+        inner = _element(two, "bsdf", type="diffuse")
+        _element(inner, "rgb", name="reflectance", value=_fmt(material.reflectance))
+    elif isinstance(material, Mirror):
+        two = _element(parent, "bsdf", type="twosided")
+        inner = _element(two, "bsdf", type="conductor")
+        _element(inner, "string", name="material", value="none")
+        _element(inner, "rgb", name="specular_reflectance", value=_fmt(material.reflectance))
+    elif isinstance(material, Dielectric):
+        inner = _element(parent, "bsdf", type="dielectric")
+        _element(inner, "float", name="int_ior", value=repr(float(material.ior)))
+        _element(inner, "float", name="ext_ior", value="1.0")
+    else:
+        raise TypeError(f"unknown material {type(material).__name__}")
+
+
+def save_mitsuba_xml(
+    scene: Scene,
+    path: PathLike,
+    *,
+    spp: int = 64,
+    max_depth: int = -1,
+    rr_depth: int = 5,
+) -> Path:
+    """Write ``scene`` as a Mitsuba 3 XML file, with its meshes as binary PLY files beside it.
+
+    The file describes the same scene as :func:`dualight.mitsuba.scene_dict` (path tracer
+    with ``max_depth``, ``rr_depth`` and visible emitters; perspective sensor with the fov
+    along x and ``look_at``; ``hdrfilm`` with a box filter; independent sampler with ``spp``;
+    each mesh a ``ply`` shape with ``face_normals``, its material's BSDF and maybe an area
+    emitter), so ``mitsuba.load_file(path)`` renders what
+    ``mitsuba.load_dict(scene.to_mitsuba(...))`` renders. The meshes go to the folder
+    ``<stem>_meshes`` next to the XML file (created or overwritten), one ``<name>.ply`` each,
+    with float32 vertices (as both renderers use them). :func:`load_mitsuba_xml` reads the file
+    back.
+
+    Parameters
+    ----------
+    scene : dualight.Scene
+        A scene with a camera, meshes and at least one emitter.
+    path : str or pathlib.Path
+        The XML file to write; its folder must exist.
+    spp : int, optional
+        The sampler's ``sample_count``.
+    max_depth, rr_depth : int, optional
+        The path tracer's settings (``-1``: unbounded), as in
+        :func:`dualight.mitsuba.scene_dict`.
+
+    Returns
+    -------
+    pathlib.Path
+        The XML file's path.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the folder of ``path`` does not exist.
+    ValueError
+        If the scene cannot be rendered (no camera, no emitter, empty) or a setting is invalid.
+    """
+    import trimesh
+
+    from dualight.mitsuba import _key
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+    scene.validate_for_rendering()
+    for name, value, low in (("spp", spp, 1), ("rr_depth", rr_depth, 1)):
+        if isinstance(value, bool) or int(value) != value or value < low:
+            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    if int(max_depth) != max_depth or (max_depth < 1 and max_depth != -1):
+        raise ValueError(f"max_depth must be -1 or a positive integer, got {max_depth}")
+    out = Path(path)
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"directory does not exist: {str(out.parent)!r}")
+    mesh_dir = out.parent / f"{out.stem}_meshes"
+    mesh_dir.mkdir(exist_ok=True)
+
+    cam = scene.camera
+    assert cam is not None  # validate_for_rendering checked it
+    lo, hi = scene.bounds()
+    corners = np.array(
+        [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+    )
+    far_clip = max(4.0 * float(np.max(np.linalg.norm(corners - cam.origin, axis=1))), 1e-3)
+
+    root = ET.Element("scene", version="3.0.0")
+    integrator = _element(root, "integrator", type="path")
+    _element(integrator, "integer", name="max_depth", value=int(max_depth))
+    _element(integrator, "integer", name="rr_depth", value=int(rr_depth))
+    _element(integrator, "boolean", name="hide_emitters", value="false")
+    sensor = _element(root, "sensor", type="perspective")
+    _element(sensor, "float", name="fov", value=repr(float(cam.fov)))
+    _element(sensor, "string", name="fov_axis", value="x")
+    _element(sensor, "float", name="near_clip", value=repr(far_clip * 1e-6))
+    _element(sensor, "float", name="far_clip", value=repr(far_clip))
+    to_world = _element(sensor, "transform", name="to_world")
+    _element(
+        to_world,
+        "lookat",
+        origin=_fmt(cam.origin),
+        target=_fmt(cam.target),
+        up=_fmt(cam.up),
+    )
+    film = _element(sensor, "film", type="hdrfilm")
+    _element(film, "integer", name="width", value=cam.width)
+    _element(film, "integer", name="height", value=cam.height)
+    _element(film, "string", name="pixel_format", value="rgb")
+    _element(film, "string", name="component_format", value="float32")
+    _element(film, "rfilter", type="box")
+    sampler = _element(sensor, "sampler", type="independent")
+    _element(sampler, "integer", name="sample_count", value=int(spp))
+
+    used = {"integrator", "sensor", "type"}
+    for mesh in scene.meshes:
+        key = _key(mesh.name, used)
+        ply = mesh_dir / f"{key}.ply"
+        tm = trimesh.Trimesh(
+            mesh.vertices.astype(np.float32), mesh.triangles, process=False, validate=False
+        )
+        tm.export(str(ply), file_type="ply", encoding="binary")
+        shape = _element(root, "shape", type="ply", id=key)
+        _element(shape, "string", name="filename", value=f"{mesh_dir.name}/{ply.name}")
+        _element(shape, "boolean", name="face_normals", value="true")
+        _write_bsdf(shape, mesh.material)
+        if mesh.is_emitter:
+            emitter = _element(shape, "emitter", type="area")
+            _element(emitter, "rgb", name="radiance", value=_fmt(mesh.emission))
+    ET.indent(root)
+    out.write_text(
+        "<!-- Written by dualight.save_mitsuba_xml -->\n"
+        + ET.tostring(root, encoding="unicode")
+        + "\n"
+    )
+    return out

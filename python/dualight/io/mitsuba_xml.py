@@ -1,0 +1,853 @@
+"""A subset of Mitsuba 3's XML scene format: :func:`load_mitsuba_xml` and
+:func:`read_mitsuba_settings` (parsed with the standard library's ``xml.etree``; meshes read with
+trimesh). See :func:`load_mitsuba_xml` for what is supported."""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
+from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.scene import Camera, Scene
+
+__all__ = ["load_mitsuba_xml", "read_mitsuba_settings"]
+
+# --------------------------------------------------------------------------------------------
+# Mitsuba 3 XML: values
+
+_SUPPORTED = {
+    "shape": ("obj", "ply", "rectangle", "cube", "sphere"),
+    "bsdf": ("diffuse", "twosided", "conductor", "dielectric"),
+    "emitter": ("area (inside a shape)",),
+    "sensor": ("perspective",),
+    "film": ("hdrfilm",),
+}
+
+# Mitsuba 3's named indices of refraction (src/render/ior.h).
+_IOR = {
+    "vacuum": 1.0,
+    "helium": 1.000036,
+    "hydrogen": 1.000132,
+    "air": 1.000277,
+    "carbon dioxide": 1.00045,
+    "water": 1.3330,
+    "acetone": 1.36,
+    "ethanol": 1.361,
+    "carbon tetrachloride": 1.461,
+    "glycerol": 1.4729,
+    "benzene": 1.501,
+    "silicone oil": 1.52045,
+    "bromine": 1.661,
+    "water ice": 1.31,
+    "fused quartz": 1.458,
+    "pyrex": 1.470,
+    "acrylic glass": 1.49,
+    "polypropylene": 1.49,
+    "bk7": 1.5046,
+    "sodium chloride": 1.544,
+    "amber": 1.55,
+    "pet": 1.5750,
+    "diamond": 2.419,
+}
+
+
+class _Context:
+    """The file being read and its ``<default>`` values (with load-time overrides)."""
+
+    def __init__(self, path: Path, params: Mapping[str, Any]) -> None:
+        self.path = path
+        self.folder = path.parent
+        self.params = {str(k): str(v) for k, v in params.items()}
+        self.defaults: dict[str, str] = {}
+
+    def error(self, element: ET.Element | None, message: str) -> ValueError:
+        tag = "" if element is None else f"<{element.tag}{_attrs(element)}>: "
+        return ValueError(f"{str(self.path)!r}: {tag}{message}")
+
+    def attr(self, element: ET.Element, name: str, default: str | None = None) -> str:
+        value = element.get(name, default)
+        if value is None:
+            raise self.error(element, f"missing attribute {name!r}")
+        return self.substitute(element, value)
+
+    def substitute(self, element: ET.Element, value: str) -> str:
+        def replace(match: re.Match[str]) -> str:
+            key = match.group(1)
+            if key in self.params:
+                return self.params[key]
+            if key in self.defaults:
+                return self.defaults[key]
+            raise self.error(element, f"${key} has no <default name={key!r}> nor a given value")
+
+        return re.sub(r"\$([A-Za-z_][A-Za-z0-9_]*)", replace, value)
+
+
+def _attrs(element: ET.Element) -> str:
+    keep = {k: v for k, v in element.attrib.items() if k in ("type", "name", "id")}
+    return "".join(f' {k}="{v}"' for k, v in keep.items())
+
+
+def _float(ctx: _Context, element: ET.Element, text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ctx.error(element, f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise ctx.error(element, f"value {text!r} is not finite")
+    return value
+
+
+def _floats(ctx: _Context, element: ET.Element, text: str) -> list[float]:
+    return [_float(ctx, element, t) for t in re.split(r"[,\s]+", text.strip()) if t]
+
+
+def _vector(ctx: _Context, element: ET.Element, default: float = 0.0) -> np.ndarray:
+    """A ``point``/``vector``/``translate``-style element: ``value="x y z"`` or x, y, z
+    attributes (missing ones default to ``default``)."""
+    if "value" in element.attrib:
+        numbers = _floats(ctx, element, ctx.attr(element, "value"))
+        if len(numbers) == 1:
+            numbers *= 3
+        if len(numbers) != 3:
+            raise ctx.error(element, f"value must hold 1 or 3 numbers, got {len(numbers)}")
+        return np.array(numbers)
+    return np.array(
+        [_float(ctx, element, ctx.attr(element, k, str(default))) for k in ("x", "y", "z")]
+    )
+
+
+def _rgb_value(ctx: _Context, element: ET.Element) -> RGB:
+    tag = element.tag
+    if tag == "rgb":
+        numbers = _floats(ctx, element, ctx.attr(element, "value"))
+        if len(numbers) == 1:
+            numbers *= 3
+        if len(numbers) != 3:
+            raise ctx.error(element, f"an rgb value needs 1 or 3 numbers, got {len(numbers)}")
+    elif tag == "float":
+        numbers = [_float(ctx, element, ctx.attr(element, "value"))] * 3
+    else:
+        raise ctx.error(
+            element,
+            f"colours must be <rgb> or <float> (got <{tag}>; spectra and textures are not "
+            "supported)",
+        )
+    if any(c < 0.0 for c in numbers):
+        raise ctx.error(element, f"a colour must be >= 0, got {numbers}")
+    return (numbers[0], numbers[1], numbers[2])
+
+
+_PROPERTY_TAGS = ("float", "integer", "boolean", "string", "rgb", "point", "vector", "spectrum")
+
+
+def _properties(
+    ctx: _Context, element: ET.Element, allowed: Mapping[str, tuple[str, ...]], what: str
+) -> dict[str, ET.Element]:
+    """The property children of ``element`` by name, refusing names not in ``allowed`` (name
+    -> accepted tags) and duplicates."""
+    out: dict[str, ET.Element] = {}
+    for child in element:
+        if child.tag not in _PROPERTY_TAGS and child.tag != "transform":
+            continue
+        name = child.get("name")
+        if name is None:
+            raise ctx.error(child, "a property needs a name")
+        if name not in allowed:
+            known = ", ".join(sorted(allowed)) or "none"
+            raise ctx.error(
+                child, f"property {name!r} of {what} is not supported (supported: {known})"
+            )
+        if child.tag not in allowed[name]:
+            tags = " or ".join(f"<{t}>" for t in allowed[name])
+            raise ctx.error(
+                child,
+                f"{what} property {name!r} must be given as {tags} (got <{child.tag}>; "
+                "spectra and textures are not supported)",
+            )
+        if name in out:
+            raise ctx.error(child, f"property {name!r} is given twice")
+        out[name] = child
+    return out
+
+
+def _number(ctx: _Context, element: ET.Element | None, default: float) -> float:
+    if element is None:
+        return default
+    return _float(ctx, element, ctx.attr(element, "value"))
+
+
+def _integer(ctx: _Context, element: ET.Element | None, default: int) -> int:
+    if element is None:
+        return default
+    text = ctx.attr(element, "value")
+    try:
+        return int(text)
+    except ValueError:
+        raise ctx.error(element, f"{text!r} is not an integer") from None
+
+
+def _boolean(ctx: _Context, element: ET.Element | None, default: bool) -> bool:
+    if element is None:
+        return default
+    text = ctx.attr(element, "value").strip().lower()
+    if text not in ("true", "false"):
+        raise ctx.error(element, f"a boolean must be true or false, got {text!r}")
+    return text == "true"
+
+
+def _string(ctx: _Context, element: ET.Element | None, default: str) -> str:
+    return default if element is None else ctx.attr(element, "value")
+
+
+# --------------------------------------------------------------------------------------------
+# Mitsuba 3 XML: transforms
+
+
+def _rotation(axis: np.ndarray, degrees: float) -> np.ndarray:
+    a = axis / np.linalg.norm(axis)
+    t = math.radians(degrees)
+    c, s = math.cos(t), math.sin(t)
+    x, y, z = a
+    m = np.eye(4)
+    m[:3, :3] = [
+        [c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s],
+        [y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s],
+        [z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c)],
+    ]
+    return m
+
+
+def _look_at(origin: np.ndarray, target: np.ndarray, up: np.ndarray) -> np.ndarray:
+    """Mitsuba's ``look_at``: columns left, up, forward, origin."""
+    forward = target - origin
+    if np.linalg.norm(forward) == 0.0:
+        raise ValueError("lookat target equals its origin")
+    forward = forward / np.linalg.norm(forward)
+    left = np.cross(up, forward)
+    if np.linalg.norm(left) < 1e-9:
+        raise ValueError("lookat up is zero or parallel to the view direction")
+    left = left / np.linalg.norm(left)
+    new_up = np.cross(forward, left)
+    m = np.eye(4)
+    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = left, new_up, forward, origin
+    return m
+
+
+def _transform(ctx: _Context, element: ET.Element) -> np.ndarray:
+    """A ``<transform>``: its operations applied in order (each one left-multiplies)."""
+    m = np.eye(4)
+    for op in element:
+        if op.tag == "translate":
+            step = np.eye(4)
+            step[:3, 3] = _vector(ctx, op, 0.0)
+        elif op.tag == "scale":
+            step = np.diag([*_vector(ctx, op, 1.0), 1.0])
+        elif op.tag == "rotate":
+            if "value" in op.attrib:
+                axis = _vector(ctx, op)
+            else:
+                axis = np.array([_float(ctx, op, ctx.attr(op, k, "0")) for k in ("x", "y", "z")])
+            if np.linalg.norm(axis) == 0.0:
+                raise ctx.error(op, "rotation axis is zero")
+            step = _rotation(axis, _float(ctx, op, ctx.attr(op, "angle")))
+        elif op.tag == "matrix":
+            numbers = _floats(ctx, op, ctx.attr(op, "value"))
+            if len(numbers) == 9:
+                step = np.eye(4)
+                step[:3, :3] = np.reshape(numbers, (3, 3))
+            elif len(numbers) == 16:
+                step = np.reshape(numbers, (4, 4))
+            else:
+                raise ctx.error(op, f"a matrix needs 9 or 16 numbers, got {len(numbers)}")
+            if not np.allclose(step[3], [0, 0, 0, 1]):
+                raise ctx.error(op, "projective matrices are not supported")
+        elif op.tag == "lookat":
+            try:
+                step = _look_at(
+                    np.array(_floats(ctx, op, ctx.attr(op, "origin"))),
+                    np.array(_floats(ctx, op, ctx.attr(op, "target"))),
+                    np.array(_floats(ctx, op, ctx.attr(op, "up", "0 1 0"))),
+                )
+            except ValueError as exc:
+                raise ctx.error(op, str(exc)) from None
+        else:
+            raise ctx.error(
+                op,
+                "transform operation not supported (supported: translate, scale, rotate, "
+                "matrix, lookat)",
+            )
+        m = step @ m
+    if abs(np.linalg.det(m[:3, :3])) < 1e-30:
+        raise ctx.error(element, "the transform is singular")
+    return m
+
+
+def _apply(m: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return v @ m[:3, :3].T + m[:3, 3]
+
+
+# --------------------------------------------------------------------------------------------
+# Mitsuba 3 XML: BSDFs, shapes, sensor
+
+
+def _bsdf(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:
+    kind = ctx.attr(element, "type")
+    if kind == "twosided":
+        inner = [c for c in element if c.tag in ("bsdf", "ref")]
+        _properties(ctx, element, {}, "twosided")
+        if len(inner) != 1:
+            raise ctx.error(
+                element,
+                "twosided must hold exactly one BSDF (two different sides are not supported)",
+            )
+        material = _bsdf_or_ref(ctx, inner[0], bsdfs)
+        if isinstance(material, Dielectric):
+            raise ctx.error(element, "twosided around a dielectric is not supported")
+        return material
+    if kind == "diffuse":
+        props = _properties(ctx, element, {"reflectance": ("rgb", "float")}, "diffuse")
+        _no_children(ctx, element)
+        rho = _rgb_value(ctx, props["reflectance"]) if "reflectance" in props else (0.5,) * 3
+        try:
+            return Diffuse(rho)
+        except ValueError as exc:
+            raise ctx.error(element, str(exc)) from None
+    if kind == "conductor":
+        props = _properties(
+            ctx,
+            element,
+            {
+                "material": ("string",),
+                "specular_reflectance": ("rgb", "float"),
+                "eta": ("rgb", "float"),
+                "k": ("rgb", "float"),
+            },
+            "conductor",
+        )
+        _no_children(ctx, element)
+        # Mitsuba 3's default material "none" is a perfect mirror (eta 0, k 1): exact here. A
+        # named metal or explicit eta/k has a Fresnel reflectance dualight does not model.
+        metal = _string(ctx, props.get("material"), "none")
+        if metal != "none" or "eta" in props or "k" in props:
+            what = f"material {metal!r}" if metal != "none" else "eta/k"
+            warnings.warn(
+                f'{str(ctx.path)!r}: <bsdf type="conductor"> with {what} (a metal with Fresnel '
+                "reflectance in Mitsuba) is loaded as a perfect mirror (dualight.Mirror, no "
+                'Fresnel term); leave material at "none" for an exact match',
+                UserWarning,
+                stacklevel=4,
+            )
+        rho = (1.0, 1.0, 1.0)
+        if "specular_reflectance" in props:
+            rho = _rgb_value(ctx, props["specular_reflectance"])
+        try:
+            return Mirror(rho)
+        except ValueError as exc:
+            raise ctx.error(element, str(exc)) from None
+    if kind == "dielectric":
+        props = _properties(
+            ctx,
+            element,
+            {
+                "int_ior": ("float", "string"),
+                "ext_ior": ("float", "string"),
+                "specular_reflectance": ("float", "rgb"),
+                "specular_transmittance": ("float", "rgb"),
+            },
+            "dielectric",
+        )
+        _no_children(ctx, element)
+        for key in ("specular_reflectance", "specular_transmittance"):
+            if key in props and _rgb_value(ctx, props[key]) != (1.0, 1.0, 1.0):
+                raise ctx.error(props[key], f"dielectric {key} other than 1 is not supported")
+        int_ior = _ior(ctx, props.get("int_ior"), "bk7")
+        ext_ior = _ior(ctx, props.get("ext_ior"), "air")
+        return Dielectric(ior=int_ior / ext_ior)
+    raise ctx.error(
+        element, f"BSDF type {kind!r} is not supported (supported: {', '.join(_SUPPORTED['bsdf'])})"
+    )
+
+
+def _ior(ctx: _Context, element: ET.Element | None, default: str) -> float:
+    if element is None:
+        return _IOR[default]
+    text = ctx.attr(element, "value")
+    if element.tag == "string" or text.strip().lower() in _IOR:
+        key = text.strip().lower()
+        if key not in _IOR:
+            raise ctx.error(element, f"unknown IOR name {text!r} (known: {', '.join(_IOR)})")
+        return _IOR[key]
+    value = _float(ctx, element, text)
+    if value <= 0.0:
+        raise ctx.error(element, f"an IOR must be > 0, got {value}")
+    return value
+
+
+def _no_children(ctx: _Context, element: ET.Element) -> None:
+    for child in element:
+        if child.tag not in _PROPERTY_TAGS:
+            raise ctx.error(
+                child,
+                f"<{child.tag}> inside <{element.tag} type={element.get('type')!r}> is "
+                "not supported (textures and nested plugins are not)",
+            )
+
+
+def _bsdf_or_ref(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:
+    if element.tag == "ref":
+        ref = ctx.attr(element, "id")
+        if ref not in bsdfs:
+            raise ctx.error(element, f"no BSDF with id {ref!r} is defined before this reference")
+        return bsdfs[ref]
+    return _bsdf(ctx, element, bsdfs)
+
+
+def _rectangle() -> tuple[np.ndarray, np.ndarray]:
+    v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float64)
+    return v, np.array([[0, 1, 2], [0, 2, 3]])
+
+
+def _cube() -> tuple[np.ndarray, np.ndarray]:
+    """[-1, 1]^3 with outward-facing triangles (four vertices per face, as Mitsuba's)."""
+    verts, faces = [], []
+    for axis in range(3):
+        for sign in (-1.0, 1.0):
+            u, w = (axis + 1) % 3, (axis + 2) % 3
+            quad = []
+            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                p = np.zeros(3)
+                p[axis], p[u], p[w] = sign, a, b
+                quad.append(p)
+            base = len(verts)
+            quad_f = [[base, base + 1, base + 2], [base, base + 2, base + 3]]
+            if sign < 0:  # (u, w) order gives normal +axis: flip for the -axis face
+                quad_f = [f[::-1] for f in quad_f]
+            verts.extend(quad)
+            faces.extend(quad_f)
+    return np.array(verts), np.array(faces)
+
+
+def _smooth_differs(v: np.ndarray, f: np.ndarray) -> bool:
+    """Whether interpolated vertex normals would differ from the face normals somewhere (some
+    vertex is shared by triangles that are not coplanar)."""
+    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    n = n / np.where(length > 0, length, 1.0)
+    summed = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(summed, f[:, k], n)
+    length = np.linalg.norm(summed, axis=1, keepdims=True)
+    vn = summed / np.where(length > 0, length, 1.0)
+    dots = np.einsum("tkj,tj->tk", vn[f], n)
+    return bool(np.any(dots < 1.0 - 1e-6))
+
+
+def _file_mesh(
+    ctx: _Context, element: ET.Element, kind: str, filename: str, face_normals: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    path = ctx.folder / filename
+    if not path.is_file():
+        raise FileNotFoundError(
+            f"no such {kind.upper()} file: {str(path)!r} (named by <shape type={kind!r}> in "
+            f"{str(ctx.path)!r})"
+        )
+    parts = [_mesh_arrays(g, str(path)) for _, g in _trimesh_geometries(path, kind)]
+    offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
+    v = np.concatenate([p[0] for p in parts])
+    f = np.concatenate([p[1] + off for p, off in zip(parts, offsets, strict=True)])
+    if not face_normals and _smooth_differs(v, f):
+        warnings.warn(
+            f"{str(ctx.path)!r}: <shape type={kind!r}> {filename!r} is rendered with flat "
+            "triangles; Mitsuba interpolates vertex normals unless <boolean "
+            'name="face_normals" value="true"/> (images differ on curved parts)',
+            UserWarning,
+            stacklevel=5,
+        )
+    return v, f
+
+
+_SHAPE_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
+    "obj": {
+        "filename": ("string",),
+        "face_normals": ("boolean",),
+        "flip_normals": ("boolean",),
+        "to_world": ("transform",),
+    },
+    "rectangle": {"flip_normals": ("boolean",), "to_world": ("transform",)},
+    "cube": {"flip_normals": ("boolean",), "to_world": ("transform",)},
+    "sphere": {
+        "center": ("point",),
+        "radius": ("float",),
+        "flip_normals": ("boolean",),
+        "to_world": ("transform",),
+    },
+}
+_SHAPE_PROPERTIES["ply"] = _SHAPE_PROPERTIES["obj"]
+
+
+def _shape(
+    ctx: _Context,
+    element: ET.Element,
+    bsdfs: Mapping[str, Material],
+    scene: Scene,
+    index: int,
+    sphere_subdivisions: int,
+) -> None:
+    from dualight.scenes import icosphere
+
+    kind = ctx.attr(element, "type")
+    if kind not in _SHAPE_PROPERTIES:
+        raise ctx.error(
+            element,
+            f"shape type {kind!r} is not supported (supported: {', '.join(_SUPPORTED['shape'])})",
+        )
+    props = _properties(ctx, element, _SHAPE_PROPERTIES[kind], f"shape {kind!r}")
+    material: Material | None = None
+    emission: RGB = (0.0, 0.0, 0.0)
+    for child in element:
+        if child.tag in _PROPERTY_TAGS or child.tag == "transform":
+            continue
+        if child.tag in ("bsdf", "ref"):
+            if child.tag == "ref" and child.get("name", "bsdf") != "bsdf":
+                raise ctx.error(child, "only a BSDF can be referenced from a shape")
+            if material is not None:
+                raise ctx.error(child, "a shape can have only one BSDF")
+            material = _bsdf_or_ref(ctx, child, bsdfs)
+        elif child.tag == "emitter":
+            if ctx.attr(child, "type") != "area":
+                raise ctx.error(child, "only area emitters can be attached to a shape")
+            if sum(c.tag == "emitter" for c in element) > 1:
+                raise ctx.error(child, "a shape can have only one emitter")
+            eprops = _properties(ctx, child, {"radiance": ("rgb", "float")}, "area emitter")
+            _no_children(ctx, child)
+            if "radiance" not in eprops:
+                raise ctx.error(child, 'an area emitter needs a radiance (<rgb name="radiance">)')
+            emission = _rgb_value(ctx, eprops["radiance"])
+        else:
+            raise ctx.error(child, f"<{child.tag}> inside a shape is not supported")
+
+    to_world = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
+    if kind in ("obj", "ply"):
+        if "filename" not in props:
+            raise ctx.error(element, f'a {kind} shape needs <string name="filename">')
+        filename = ctx.attr(props["filename"], "value")
+        face_normals = _boolean(ctx, props.get("face_normals"), False)
+        v, f = _file_mesh(ctx, element, kind, filename, face_normals)
+        label = Path(filename).stem
+    elif kind == "rectangle":
+        (v, f), label = _rectangle(), "rectangle"
+    elif kind == "cube":
+        (v, f), label = _cube(), "cube"
+    else:
+        centre = _vector(ctx, props["center"]) if "center" in props else np.zeros(3)
+        radius = _number(ctx, props.get("radius"), 1.0)
+        if radius <= 0.0:
+            raise ctx.error(props["radius"], f"sphere radius must be > 0, got {radius}")
+        v, f = icosphere(centre, radius, sphere_subdivisions)
+        label = "sphere"
+    v = _apply(to_world, v)
+    if kind in ("rectangle", "cube") and np.linalg.det(to_world[:3, :3]) < 0.0:
+        # Mitsuba transforms these shapes' normals as normals, so a mirroring transform keeps
+        # their front side; meshes and spheres take the transformed triangles' orientation.
+        f = f[:, ::-1]
+    if _boolean(ctx, props.get("flip_normals"), False):
+        f = f[:, ::-1]
+    name = element.get("id") or f"{label}{index}"
+    if material is None:  # Mitsuba's default BSDF: diffuse 0.5, black on emitters
+        material = Diffuse((0.0,) * 3 if any(e > 0.0 for e in emission) else (0.5,) * 3)
+    try:
+        scene.add_mesh(v, f, emission=emission, material=material, name=name, degenerate="drop")
+    except ValueError as exc:
+        raise ctx.error(element, str(exc)) from None
+
+
+def _fov_along_x(fov: float, axis: str, width: int, height: int) -> float:
+    """Convert Mitsuba's ``fov`` along ``fov_axis`` to dualight's full angle along x."""
+    aspect = width / height
+    if axis == "smaller":
+        axis = "x" if width <= height else "y"
+    elif axis == "larger":
+        axis = "x" if width >= height else "y"
+    half = math.tan(math.radians(fov) / 2.0)
+    if axis == "y":
+        half *= aspect
+    elif axis == "diagonal":
+        half *= width / math.hypot(width, height)
+    return math.degrees(2.0 * math.atan(half))
+
+
+def _sensor(ctx: _Context, element: ET.Element, settings: dict[str, Any]) -> Camera:
+    kind = ctx.attr(element, "type")
+    if kind != "perspective":
+        raise ctx.error(element, f"sensor type {kind!r} is not supported (supported: perspective)")
+    props = _properties(
+        ctx,
+        element,
+        {
+            "fov": ("float",),
+            "fov_axis": ("string",),
+            "to_world": ("transform",),
+            "near_clip": ("float",),
+            "far_clip": ("float",),
+        },
+        "perspective sensor",
+    )
+    width, height = 768, 576  # Mitsuba's default film
+    rfilter = "gaussian"  # and its default pixel filter
+    for child in element:
+        if child.tag == "film":
+            film = ctx.attr(child, "type")
+            if film != "hdrfilm":
+                raise ctx.error(child, f"film type {film!r} is not supported (supported: hdrfilm)")
+            fprops = _properties(
+                ctx,
+                child,
+                {
+                    "width": ("integer",),
+                    "height": ("integer",),
+                    "pixel_format": ("string",),
+                    "component_format": ("string",),
+                    "file_format": ("string",),
+                    "sample_border": ("boolean",),
+                },
+                "hdrfilm",
+            )
+            width = _integer(ctx, fprops.get("width"), width)
+            height = _integer(ctx, fprops.get("height"), height)
+            if width < 1 or height < 1:
+                raise ctx.error(child, f"film size must be positive, got {width} x {height}")
+            rfilters = [c for c in child if c.tag == "rfilter"]
+            if rfilters:
+                rfilter = ctx.attr(rfilters[0], "type")
+            for c in child:
+                if c.tag not in (*_PROPERTY_TAGS, "rfilter"):
+                    raise ctx.error(c, f"<{c.tag}> inside a film is not supported")
+        elif child.tag == "sampler":
+            sprops = _properties(
+                ctx, child, {"sample_count": ("integer",), "seed": ("integer",)}, "sampler"
+            )
+            if "sample_count" in sprops:
+                settings["spp"] = _integer(ctx, sprops["sample_count"], 4)
+        elif child.tag not in (*_PROPERTY_TAGS, "transform"):
+            raise ctx.error(child, f"<{child.tag}> inside a sensor is not supported")
+    if rfilter != "box":
+        warnings.warn(
+            f"{str(ctx.path)!r}: the film's {rfilter!r} pixel filter is replaced by a box "
+            'filter (dualight\'s only one; add <rfilter type="box"/> to the hdrfilm for an '
+            "exact match)",
+            UserWarning,
+            stacklevel=4,
+        )
+    fov = _number(ctx, props.get("fov"), math.nan)
+    if "fov" not in props:
+        raise ctx.error(
+            element, 'the sensor needs <float name="fov"> (focal_length is not supported)'
+        )
+    if not 0.0 < fov < 180.0:
+        raise ctx.error(props["fov"], f"fov must be in (0, 180) degrees, got {fov}")
+    axis = _string(ctx, props.get("fov_axis"), "x")
+    if axis not in ("x", "y", "diagonal", "smaller", "larger"):
+        raise ctx.error(props["fov_axis"], f"unknown fov_axis {axis!r}")
+    m = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
+    origin = m[:3, 3]
+    left, up, forward = (m[:3, k] / np.linalg.norm(m[:3, k]) for k in range(3))
+    if not np.allclose(np.cross(up, forward), left, atol=1e-4):
+        raise ctx.error(
+            props.get("to_world"),
+            "the sensor's to_world must be a rotation and translation (e.g. a lookat); "
+            "mirrored or sheared cameras are not supported",
+        )
+    try:
+        return Camera(
+            origin=tuple(origin),
+            target=tuple(origin + forward),
+            up=tuple(up),
+            fov=_fov_along_x(fov, axis, width, height),
+            resolution=(width, height),
+        )
+    except ValueError as exc:
+        raise ctx.error(element, str(exc)) from None
+
+
+def _integrator(ctx: _Context, element: ET.Element, settings: dict[str, Any]) -> None:
+    settings["integrator"] = ctx.attr(element, "type")
+    for child in element:
+        if child.tag in ("integer", "boolean", "float", "string"):
+            name = ctx.attr(child, "name")
+            if child.tag == "integer":
+                settings[name] = _integer(ctx, child, 0)
+            elif child.tag == "boolean":
+                settings[name] = _boolean(ctx, child, False)
+            elif child.tag == "float":
+                settings[name] = _number(ctx, child, 0.0)
+            else:
+                settings[name] = ctx.attr(child, "value")
+        elif child.tag == "integrator":  # e.g. an aov or moment wrapper: read the nested one
+            _integrator(ctx, child, settings)
+
+
+def _parse(
+    path: PathLike, params: Mapping[str, Any] | None, build: bool, sphere_subdivisions: int
+) -> tuple[Scene, dict[str, Any]]:
+    xml_path = _existing_file(path, "Mitsuba XML")
+    ctx = _Context(xml_path, params or {})
+    try:
+        root = ET.parse(xml_path).getroot()
+    except ET.ParseError as exc:
+        raise ValueError(f"{str(xml_path)!r} is not well-formed XML: {exc}") from None
+    if root.tag != "scene":
+        raise ctx.error(root, "the root element must be <scene>")
+    version = root.get("version", "3.0.0")
+    if version.split(".")[0] not in ("2", "3"):
+        raise ctx.error(root, f"scene version {version!r}: only Mitsuba 2 and 3 files are read")
+    scene = Scene()
+    settings: dict[str, Any] = {}
+    bsdfs: dict[str, Material] = {}
+    shapes = 0
+    for element in root:
+        tag = element.tag
+        if tag == "default":
+            ctx.defaults[ctx.attr(element, "name")] = element.get("value", "")
+        elif tag == "integrator":
+            _integrator(ctx, element, settings)
+        elif tag == "sensor":
+            camera = _sensor(ctx, element, settings)
+            if build:
+                if scene.camera is not None:
+                    raise ctx.error(element, "only one sensor is supported")
+                scene.camera = camera
+        elif not build:
+            continue
+        elif tag == "bsdf":
+            material = _bsdf(ctx, element, bsdfs)
+            key = element.get("id")
+            if key is None:
+                raise ctx.error(element, "a top-level BSDF needs an id to be referenced")
+            bsdfs[ctx.substitute(element, key)] = material
+        elif tag == "shape":
+            _shape(ctx, element, bsdfs, scene, shapes, sphere_subdivisions)
+            shapes += 1
+        elif tag == "emitter":
+            raise ctx.error(
+                element,
+                'stand-alone emitters are not supported: only <emitter type="area"> inside '
+                "a <shape>",
+            )
+        else:
+            raise ctx.error(
+                element,
+                "element not supported (supported at the top level: default, integrator, "
+                "sensor, bsdf, shape)",
+            )
+    return scene, settings
+
+
+def load_mitsuba_xml(
+    path: PathLike,
+    *,
+    params: Mapping[str, Any] | None = None,
+    sphere_subdivisions: int = 4,
+) -> Scene:
+    """Load a scene in Mitsuba 3's XML format (a subset of it) with its camera.
+
+    Supported:
+
+    * ``<default name value>`` and ``$name`` substitution in attribute values (``params``
+      overrides defaults, like ``mitsuba.load_file(path, **params)``);
+    * shapes ``obj``, ``ply`` (``filename`` relative to the XML file, ``face_normals``),
+      ``rectangle`` (``[-1, 1]^2`` at ``z = 0``, normal ``+z``), ``cube`` (``[-1, 1]^3``),
+      ``sphere`` (``center``, ``radius``; tessellated as an icosphere of
+      ``sphere_subdivisions``), each with ``flip_normals`` and a ``to_world`` ``<transform>``
+      of ``translate``, ``scale``, ``rotate``, ``matrix`` and ``lookat`` operations;
+    * BSDFs, inline or top-level with an ``id`` and referenced by ``<ref id>``: ``diffuse``
+      (RGB ``reflectance``), ``twosided`` around one of them, ``conductor`` with Mitsuba 3's
+      default ``material="none"``, a perfect mirror (:class:`~dualight.Mirror` with
+      ``specular_reflectance``, default 1), ``dielectric``
+      (:class:`~dualight.Dielectric` with ``ior = int_ior / ext_ior``, numbers or Mitsuba's
+      IOR names; defaults bk7 and air as in Mitsuba);
+    * ``<emitter type="area">`` inside a shape with an RGB ``radiance`` (one-sided, on the
+      normals' side);
+    * ``<sensor type="perspective">`` with ``fov``, ``fov_axis`` (x, y, diagonal, smaller,
+      larger; converted to dualight's fov along x), ``to_world`` (rotation and translation);
+      its ``<film type="hdrfilm">`` ``width`` and ``height``; its sampler's ``sample_count``
+      and the ``<integrator>`` settings are read by :func:`read_mitsuba_settings`.
+
+    Approximations, each with a ``UserWarning``: a ``conductor`` with a named ``material``
+    (``"Au"``, ...) or ``eta``/``k`` (a metal with Fresnel reflectance) becomes a perfect
+    mirror; a pixel filter other than ``box`` (Mitsuba's default is a Gaussian) is replaced by
+    dualight's box filter; ``obj``/``ply`` meshes without ``face_normals`` render flat where
+    Mitsuba would interpolate vertex normals. Without a warning: dualight's diffuse and mirror
+    BSDFs are two-sided, so a one-sided Mitsuba ``diffuse`` or ``conductor`` differs only where
+    light reaches the back of a surface; a shape without a BSDF gets Mitsuba's default: diffuse
+    0.5, or black if it emits.
+
+    Everything else (other plugin types, textures, spectra, stand-alone emitters, includes,
+    unknown properties) raises a ``ValueError`` that names the element and the file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The XML file.
+    params : mapping, optional
+        Values for ``$name`` references, overriding ``<default>`` elements.
+    sphere_subdivisions : int, optional
+        Icosphere subdivisions of ``sphere`` shapes (``20 * 4**n`` triangles).
+
+    Returns
+    -------
+    dualight.Scene
+        The scene, with a camera if the file has a sensor.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the XML file or a mesh file it names does not exist.
+    ValueError
+        On malformed XML, unsupported elements, bad or non-finite numbers.
+
+    Examples
+    --------
+    >>> scene = dualight.load_mitsuba_xml("cbox.xml", params={"radiance": 10})
+    >>> depth = dualight.read_mitsuba_settings("cbox.xml", keys=("max_depth", "rr_depth"))
+    >>> image = dualight.render(scene, spp=256, **depth)
+    """
+    scene, _ = _parse(path, params, True, sphere_subdivisions)
+    return scene
+
+
+def read_mitsuba_settings(
+    path: PathLike,
+    *,
+    params: Mapping[str, Any] | None = None,
+    keys: tuple[str, ...] | None = None,
+) -> dict[str, Any]:
+    """The render settings a Mitsuba 3 XML file asks for.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The XML file.
+    params : mapping, optional
+        As in :func:`load_mitsuba_xml`.
+    keys : tuple of str, optional
+        Return only these keys (those the file gives).
+
+    Returns
+    -------
+    dict
+        ``integrator`` (its type, e.g. ``"path"``), the integrator's properties as given
+        (``max_depth``, ``rr_depth``, ``hide_emitters``, ...) and ``spp`` (the sampler's
+        ``sample_count``), for those the file has.
+    """
+    _, settings = _parse(path, params, False, 0)
+    if keys is not None:
+        settings = {k: v for k, v in settings.items() if k in keys}
+    return settings

@@ -1,0 +1,186 @@
+"""Wavefront OBJ + MTL: :func:`load_obj` (read with trimesh, a maintained mesh library)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
+from dualight.materials import Diffuse, Material
+from dualight.scene import Scene
+
+__all__ = ["load_obj"]
+
+# --------------------------------------------------------------------------------------------
+# Wavefront OBJ + MTL
+
+# MTL statements that change how a surface looks but that dualight does not model.
+_MTL_IGNORED = ("map_kd", "map_ke", "map_ks", "map_bump", "bump", "map_d", "ks", "tr", "d", "ni")
+
+
+def _mtl_floats(value: Any, key: str, where: str) -> RGB:
+    items = value if isinstance(value, list | tuple) else str(value).split()
+    try:
+        numbers = [float(x) for x in items]
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}: {key} must be numbers, got {value!r}") from None
+    if len(numbers) == 1:
+        numbers *= 3
+    if len(numbers) != 3 or not all(math.isfinite(x) for x in numbers):
+        raise ValueError(f"{where}: {key} must be 1 or 3 finite numbers, got {value!r}")
+    return (numbers[0], numbers[1], numbers[2])
+
+
+def _read_mtl_files(obj: Path) -> dict[str, dict[str, Any]]:
+    """The materials of every ``mtllib`` an OBJ names, parsed by trimesh (keys lower case)."""
+    from trimesh.exchange.obj import parse_mtl
+
+    materials: dict[str, dict[str, Any]] = {}
+    try:
+        text = obj.read_text(errors="replace")
+    except OSError as exc:
+        raise ValueError(f"cannot read OBJ file {str(obj)!r}: {exc}") from exc
+    for line in text.splitlines():
+        parts = line.strip().split(maxsplit=1)
+        if len(parts) == 2 and parts[0] == "mtllib":
+            mtl = obj.parent / parts[1].strip()
+            if not mtl.is_file():
+                raise FileNotFoundError(
+                    f"no such MTL file: {str(mtl)!r} (named by mtllib in {str(obj)!r})"
+                )
+            mtl_text = mtl.read_text(errors="replace")
+            try:
+                parsed = parse_mtl(mtl_text)
+            except Exception as exc:  # noqa: BLE001
+                raise ValueError(f"cannot read MTL file {str(mtl)!r}: {exc}") from exc
+            # trimesh consumes texture statements (map_Kd, ...) while it parses: note which
+            # statements each material had, to warn about those dualight ignores.
+            current = None
+            for statement in mtl_text.splitlines():
+                words = statement.split()
+                if not words:
+                    continue
+                if words[0] == "newmtl" and len(words) > 1:
+                    current = statement.split(maxsplit=1)[1].strip()
+                elif current in parsed:
+                    parsed[current].setdefault("_statements", {})[words[0].lower()] = words[1:]
+            materials.update(parsed)
+    return materials
+
+
+def load_obj(
+    path: PathLike,
+    *,
+    scene: Scene | None = None,
+    default_reflectance: RGB = (0.5, 0.5, 0.5),
+    emission_scale: float = 1.0,
+) -> Scene:
+    """Load a Wavefront OBJ file and its MTL materials into a scene.
+
+    The file is read with trimesh (a maintained mesh library): polygons are triangulated, and
+    the faces are split into one dualight mesh per material (``usemtl``), named
+    ``"<file stem>/<material>"``. Each material becomes a :class:`~dualight.Diffuse` with the
+    MTL's diffuse colour ``Kd`` and an emission (W m^-2 sr^-1, one-sided, on the
+    right-hand-rule normal's side) from its ``Ke``. Faces without a material get
+    ``default_reflectance`` and no emission. MTL statements dualight does not model (textures
+    such as ``map_Kd``, specular ``Ks``, transparency ``d``/``Tr``, ``Ni``) are ignored with a
+    ``UserWarning``; normals and texture coordinates are not used (dualight renders flat
+    triangles). Zero-area triangles are dropped with a warning.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.obj`` file; ``mtllib`` files are looked up beside it.
+    scene : dualight.Scene, optional
+        Add the meshes to this scene (its camera is kept) instead of a new one without a
+        camera.
+    default_reflectance : tuple of 3 float, optional
+        Albedo of faces without a material.
+    emission_scale : float, optional
+        Factor applied to every ``Ke`` (MTL files carry no unit), ``>= 0``.
+
+    Returns
+    -------
+    dualight.Scene
+        ``scene`` if given, else a new scene; set its ``camera`` before rendering.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the OBJ file or an MTL file it names does not exist.
+    ValueError
+        If the file cannot be parsed, has no faces, a colour is not finite or a ``Kd`` lies
+        outside ``[0, 1]``.
+
+    Examples
+    --------
+    >>> scene = dualight.load_obj("room.obj")
+    >>> scene.camera = dualight.Camera(origin=(0, 1, 4), target=(0, 1, 0))
+    """
+    obj = _existing_file(path, "OBJ")
+    scale = float(emission_scale)
+    if not (math.isfinite(scale) and scale >= 0.0):
+        raise ValueError(f"emission_scale must be finite and >= 0, got {emission_scale!r}")
+    if scene is None:
+        scene = Scene()
+    elif not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+    mtl = _read_mtl_files(obj)
+    geometries = _trimesh_geometries(obj, "obj")
+    ignored: dict[str, list[str]] = {}
+    pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str]] = []
+    for key, geom in geometries:
+        material = getattr(getattr(geom, "visual", None), "material", None)
+        mname = getattr(material, "name", None)
+        where = f"{str(obj)!r}, material {mname!r}"
+        props = mtl.get(mname) if mname else None
+        rho, Le = tuple(default_reflectance), (0.0, 0.0, 0.0)
+        if props is not None:
+            if "kd" in props:
+                rho = _mtl_floats(props["kd"], "Kd", where)
+            if "ke" in props:
+                Le = _mtl_floats(props["ke"], "Ke", where)
+            statements = props.get("_statements", {})
+            skipped = [
+                k for k in _MTL_IGNORED if k in statements and not _neutral(k, statements[k])
+            ]
+            if skipped:
+                ignored[str(mname)] = skipped
+        try:
+            diffuse = Diffuse(rho)
+        except ValueError as exc:
+            raise ValueError(f"{where}: Kd: {exc}") from None
+        name = f"{obj.stem}/{mname}" if mname else f"{obj.stem}/{key}"
+        v, f = _mesh_arrays(geom, str(obj))
+        emission = (Le[0] * scale, Le[1] * scale, Le[2] * scale)
+        pending.append((v, f, diffuse, emission, name))
+    for v, f, material, emission, name in pending:
+        scene.add_mesh(v, f, emission=emission, material=material, name=name, degenerate="drop")
+    if ignored:
+        what = "; ".join(f"{m}: {', '.join(keys)}" for m, keys in ignored.items())
+        warnings.warn(
+            f"{str(obj)!r}: MTL statements dualight does not model were ignored ({what}); "
+            "only Kd (diffuse) and Ke (emission) are used",
+            UserWarning,
+            stacklevel=2,
+        )
+    return scene
+
+
+def _neutral(key: str, value: Any) -> bool:
+    """Whether an ignored MTL statement leaves the look of a diffuse surface unchanged."""
+    try:
+        numbers = [float(x) for x in (value if isinstance(value, list | tuple) else [value])]
+    except (TypeError, ValueError):
+        return False
+    if key in ("ks",):
+        return all(x == 0.0 for x in numbers)
+    if key == "d":
+        return all(x == 1.0 for x in numbers)
+    if key == "tr":
+        return all(x == 0.0 for x in numbers)
+    return key == "ni"  # an index of refraction alone does nothing without transparency
