@@ -29,4 +29,5 @@ fi
 .venv/bin/python -m pip install -q --disable-pip-version-check --upgrade pip >/dev/null
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.10" "pybind11>=2.12" "numpy>=1.24" "tqdm>=4.60" \
-  "pytest>=7" "colour-science>=0.4.3" "mitsuba>=3.5" "ruff>=0.4" "matplotlib>=3.7" "atheris>=2.3"
+  "pytest>=7" "colour-science>=0.4.3" "mitsuba>=3.5" "ruff>=0.4" "matplotlib>=3.7" "atheris>=2.3" \
+  "dask[distributed]>=2024.1"
