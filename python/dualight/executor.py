@@ -86,6 +86,7 @@ def render_block(
     named by ``token``; returns the film's raw accumulators and the core's stats."""
     from dualight import _core
 
+    cpu_start = time.process_time()
     compiled = _COMPILED.get(token)
     if compiled is None:
         compiled = scene._compile()
@@ -97,9 +98,11 @@ def render_block(
         compiled, camera._compile(), _options(method, opts, first_sample, spp), None,
         accumulators=True,
     )
+    stats = dict(result["stats"])
+    stats["cpu_seconds"] = time.process_time() - cpu_start  # the worker's, compile included
     return {
         "accumulators": result["accumulators"],
-        "stats": dict(result["stats"]),
+        "stats": stats,
         "keyboard_interrupt": result["keyboard_interrupt"],
         "worker": os.getpid(),
     }
@@ -134,7 +137,7 @@ def render_split(
     }
     film = _core.Film(width, height)
     stats: dict[str, Any] = {key: 0 for key in _SUMMED}
-    stats.update(task_seconds=0.0, unoccluded=False, workers=set())
+    stats.update(task_seconds=0.0, task_cpu_seconds=0.0, unoccluded=False, workers=set())
     done: dict[int, dict[str, Any]] = {}
     merged = 0
     interrupted = False
@@ -145,6 +148,7 @@ def render_split(
         for key in _SUMMED:
             stats[key] += task[key]
         stats["task_seconds"] += task["seconds"]
+        stats["task_cpu_seconds"] += task["cpu_seconds"]
         stats["unoccluded"] = task["unoccluded"]
         stats["workers"].add(result["worker"])
 

@@ -238,7 +238,7 @@ def render(
         ``threads`` threads (default 1: the executor's workers give the parallelism) and gets
         the scene description pickled; workers need the same dualight version. Needs ``spp``
         (no ``time_limit``); ``progress`` advances per finished task; ``stats`` adds
-        ``tasks``, ``workers`` and ``task_seconds``.
+        ``tasks``, ``workers``, ``task_seconds`` and ``task_cpu_seconds``.
 
     Returns
     -------
