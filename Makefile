@@ -1,7 +1,7 @@
 # The README's commands. Each sets itself up first (idempotent; see scripts/setup.sh).
 VENV := .venv
 PY := $(VENV)/bin/python
-SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
+SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
 .PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
 

@@ -22,6 +22,7 @@ MODULES = (
     "dualight.scenes",
     "dualight.mitsuba",
     "dualight.io",
+    "dualight.executor",
     "dualight.bench",
     "dualight.radiosity",
     "dualight.radiosity.solution",
@@ -69,6 +70,6 @@ def test_the_package_is_typed_and_the_stub_covers_the_extension() -> None:
     package = Path(dualight.__file__).parent
     assert (package / "py.typed").exists()
     stub = (package / "_core.pyi").read_text()
-    declared = set(re.findall(r"^(?:class|def) (\w+)", stub, flags=re.MULTILINE))
+    declared = set(re.findall(r"^(?:class |def )?(\w+)\b", stub, flags=re.MULTILINE))
     exported = {n for n in dir(_core) if not n.startswith("_")}
     assert exported <= declared, f"not in _core.pyi (run make stubs): {sorted(exported - declared)}"

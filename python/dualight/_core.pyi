@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BdptOptions', 'Bsdf', 'BsdfKind', 'DirectSolver', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'sampler_points', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'sampler_points', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -174,6 +174,25 @@ class Bsdf:
     @property
     def kind(self) -> BsdfKind:
         ...
+class Film:
+    """
+    A film's totals, to merge the tasks of a split render: add each task's accumulators (render_*(..., accumulators=True)) in block order, then read mean() and variance(), computed as a single render computes them.
+    """
+    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex, height: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def accumulators(self) -> dict:
+        ...
+    def add_accumulators(self, accumulators: dict) -> None:
+        ...
+    def counts(self) -> numpy.typing.NDArray[numpy.uint32]:
+        ...
+    def mean(self) -> numpy.typing.NDArray[numpy.float32]:
+        ...
+    def variance(self) -> numpy.typing.NDArray[numpy.float32]:
+        ...
+    @property
+    def light_paths(self) -> int:
+        ...
 class SamplerType:
     """
     Members:
@@ -224,6 +243,14 @@ class PathTracerOptions:
     Options of the path tracer (keywords only).
     """
     def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
+        ...
+    @property
+    def first_sample(self) -> int:
+        """
+        First sample index rendered (one task of a split render; see Film).
+        """
+    @first_sample.setter
+    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def max_depth(self) -> int:
@@ -306,6 +333,14 @@ class LightTracerOptions:
     def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
         ...
     @property
+    def first_sample(self) -> int:
+        """
+        First sample index rendered (one task of a split render; see Film).
+        """
+    @first_sample.setter
+    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def skip_unneeded(self) -> bool:
         """
         Skip work the scene makes pointless (default True); False does it all.
@@ -318,6 +353,14 @@ class BdptOptions:
     Options of bidirectional path tracing (keywords only).
     """
     def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent, heuristic: MisHeuristic = MisHeuristic.power, strategy_images: bool = False) -> None:
+        ...
+    @property
+    def first_sample(self) -> int:
+        """
+        First sample index rendered (one task of a split render; see Film).
+        """
+    @first_sample.setter
+    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def skip_unneeded(self) -> bool:
@@ -612,11 +655,11 @@ def read_image(path: str) -> tuple[numpy.typing.NDArray[numpy.float32], dict[str
     """
     Reads an image: (H x W x C float32 pixels, metadata dict, is_low_dynamic_range).
     """
-def render_bdpt(scene: Scene, camera: PinholeCamera, options: BdptOptions, progress: typing.Any = None) -> dict:
+def render_bdpt(scene: Scene, camera: PinholeCamera, options: BdptOptions, progress: typing.Any = None, accumulators: bool = False) -> dict:
     """
     Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.
     """
-def render_light(scene: Scene, camera: PinholeCamera, options: LightTracerOptions, progress: typing.Any = None) -> dict:
+def render_light(scene: Scene, camera: PinholeCamera, options: LightTracerOptions, progress: typing.Any = None, accumulators: bool = False) -> dict:
     """
     Light-traces the scene (spp x pixels particles); returns dict(mean, variance, counts, light_paths, stats, keyboard_interrupt).
     """
@@ -624,7 +667,7 @@ def render_mlt(scene: Scene, camera: PinholeCamera, options: MltOptions, progres
     """
     Path-space MLT (Veach); returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); stats has b, b_ci95, mutations, acceptance rates and per mutation type counts.
     """
-def render_path(scene: Scene, camera: PinholeCamera, options: PathTracerOptions, progress: typing.Any = None) -> dict:
+def render_path(scene: Scene, camera: PinholeCamera, options: PathTracerOptions, progress: typing.Any = None, accumulators: bool = False) -> dict:
     """
     Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). progress(done, total) is called about every 100 ms.
     """
@@ -648,3 +691,4 @@ def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, nump
     """
     Writes an H x W x C float image; 8-bit formats expect values already in [0, 1].
     """
+BLOCK_SPP: int = 16

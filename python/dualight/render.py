@@ -138,6 +138,7 @@ def render(
     mutations_per_pixel: int | None = None,
     mlt: dict[str, Any] | None = None,
     skip: bool = True,
+    executor: Any = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -227,6 +228,17 @@ def render(
         zero BSDF. ``image.stats["skipped"]`` says what was skipped, ``["scene"]`` the
         features. ``False`` does all the work (to measure what skipping saves); the image's
         expected value is the same.
+    executor:
+        ``"path"``, ``"light"`` and ``"bdpt"``: a ``concurrent.futures.Executor`` (e.g.
+        ``ProcessPoolExecutor``, or a Dask client's ``get_executor()``) or a
+        ``distributed.Client`` to render on: the samples are split into one task per block of
+        ``dualight._core.BLOCK_SPP`` (16) samples per pixel (particles per pixel for
+        ``"light"``), and the blocks merged in order, so the image equals the single-process
+        image with the same seed and ``spp`` bit for bit (mean and variance). Each task uses
+        ``threads`` threads (default 1: the executor's workers give the parallelism) and gets
+        the scene description pickled; workers need the same dualight version. Needs ``spp``
+        (no ``time_limit``); ``progress`` advances per finished task; ``stats`` adds
+        ``tasks``, ``workers``, ``task_seconds`` and ``task_cpu_seconds``.
 
     Returns
     -------
@@ -289,6 +301,16 @@ def render(
         raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
     if not isinstance(skip, bool):
         raise TypeError(f"skip must be True or False, got {skip!r}")
+    if executor is not None:
+        from dualight.executor import SPLITTABLE, as_executor
+
+        executor = as_executor(executor)
+        if method not in SPLITTABLE:
+            raise ValueError(f"executor= is not supported for method {method!r} yet")
+        if time_limit is not None:
+            raise ValueError("executor= needs spp and no time_limit (tasks are blocks of samples)")
+        if strategy_images:
+            raise ValueError("strategy_images is not supported with executor= yet")
     scene.validate_for_rendering(camera)
     cam = camera or scene.camera
     assert cam is not None
@@ -351,7 +373,22 @@ def render(
     else:
         raise TypeError("progress must be True, False or a callable(done, total)")
     try:
-        result = run(scene._compile(), cam._compile(), options, callback)
+        if executor is not None:
+            from dualight.executor import render_split
+
+            task_options = dict(
+                max_depth=max_depth,
+                rr_depth=rr_depth,
+                seed=seed,
+                threads=threads or 1,
+                sampler=sampler,
+                heuristic=heuristic,
+                skip=skip,
+            )
+            assert spp is not None
+            result = render_split(executor, scene, cam, method, task_options, spp, callback)
+        else:
+            result = run(scene._compile(), cam._compile(), options, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -366,7 +403,7 @@ def render(
         stats["light_paths"] = result["light_paths"]
     if method == "bdpt":
         stats["heuristic"] = heuristic
-    stats["threads"] = threads or os.cpu_count()
+    stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
     image = Image(result["mean"], variance=result["variance"], stats=stats)
     if strategy_images:
         image.strategies = dict(result["strategies"])

@@ -216,6 +216,20 @@ class Scene:
         self._meshes: list[Mesh] = []
         self._compiled: _core.Scene | None = None
 
+    def __getstate__(self) -> dict[str, Any]:
+        # Picklable (render(executor=...) sends the description to workers): the compiled
+        # scene stays behind and is rebuilt where it is needed.
+        state = self.__dict__.copy()
+        state["_compiled"] = None
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        for mesh in self._meshes:
+            for value in vars(mesh).values():
+                if isinstance(value, np.ndarray):
+                    value.flags.writeable = False
+
     @property
     def camera(self) -> Camera | None:
         """The scene's camera, or None (then render and solve need ``camera=``)."""

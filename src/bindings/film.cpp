@@ -3,11 +3,55 @@
 #include <pybind11/stl.h>
 
 #include "bindings/numpy_util.h"
+#include "bindings/render_result.h"
+#include "film/film.h"
 #include "film/image_io.h"
 
 namespace dualight::bindings {
 
+namespace {
+
+template <class T>
+std::vector<T> flat_of(const py::handle& value, size_t size, const char* name) {
+  const auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!a || static_cast<size_t>(a.size()) != size) {
+    throw py::value_error(std::string("accumulators: ") + name + " must have " + std::to_string(size) +
+                          " elements");
+  }
+  return std::vector<T>(a.data(), a.data() + a.size());
+}
+
+}  // namespace
+
 void bind_film(py::module_& m) {
+  m.attr("BLOCK_SPP") = kBlockSpp;
+  py::class_<Film>(m, "Film",
+                   "A film's totals, to merge the tasks of a split render: add each task's accumulators "
+                   "(render_*(..., accumulators=True)) in block order, then read mean() and variance(), "
+                   "computed as a single render computes them.")
+      .def(py::init<int, int>(), py::arg("width"), py::arg("height"))
+      .def(
+          "add_accumulators",
+          [](Film& film, const py::dict& d) {
+            const size_t n = film.pixel_count();
+            FilmAccumulators a;
+            a.sum = flat_of<double>(d["sum"], 3 * n, "sum");
+            a.sum_sq = flat_of<double>(d["sum_sq"], 3 * n, "sum_sq");
+            a.count = flat_of<uint32_t>(d["count"], n, "count");
+            if (!d["splat_sum"].is_none()) {
+              a.splat_sum = flat_of<double>(d["splat_sum"], 3 * n, "splat_sum");
+              a.splat_sum_sq = flat_of<double>(d["splat_sum_sq"], 3 * n, "splat_sum_sq");
+            }
+            a.light_paths = d["light_paths"].cast<uint64_t>();
+            film.add_accumulators(a);
+          },
+          py::arg("accumulators"))
+      .def("accumulators", [](const Film& film) { return accumulators_dict(film); })
+      .def("mean", [](const Film& film) { return to_numpy(film.mean(), {film.height(), film.width(), 3}); })
+      .def("variance",
+           [](const Film& film) { return to_numpy(film.variance_of_mean(), {film.height(), film.width(), 3}); })
+      .def("counts", [](const Film& film) { return to_numpy(film.sample_counts(), {film.height(), film.width()}); })
+      .def_property_readonly("light_paths", &Film::light_paths);
   m.def(
       "write_image",
       [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& pixels,

@@ -21,6 +21,8 @@ void bind_pathspace(py::module_& m) {
       .value("sobol", SamplerType::Sobol);
 
   py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
+      .def_readwrite("first_sample", &PathTracerOptions::first_sample,
+                     "First sample index rendered (one task of a split render; see Film).")
       .def_readwrite("skip_unneeded", &PathTracerOptions::skip_unneeded,
                      "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
@@ -42,14 +44,15 @@ void bind_pathspace(py::module_& m) {
   m.def(
       "render_path",
       [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const PathTracerOptions& options,
-         const py::object& progress) {
+         const py::object& progress, bool accumulators) {
         check_emitters(*scene);
         RenderControl control;
         auto run = run_interruptible([&] { return render_path(*scene, camera, options, control); }, control,
                                      progress);
-        return result_dict(std::move(run.result), run.keyboard_interrupt);
+        return result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      py::arg("accumulators") = false,
       "Path-traces the scene; returns dict(mean, variance, counts, stats, keyboard_interrupt). "
       "progress(done, total) is called about every 100 ms.");
 
@@ -58,6 +61,8 @@ void bind_pathspace(py::module_& m) {
       .value("balance", MisHeuristic::Balance);
 
   py::class_<LightTracerOptions>(m, "LightTracerOptions", "Options of the light tracer (keywords only).")
+      .def_readwrite("first_sample", &LightTracerOptions::first_sample,
+                     "First sample index rendered (one task of a split render; see Film).")
       .def_readwrite("skip_unneeded", &LightTracerOptions::skip_unneeded,
                      "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
@@ -70,6 +75,8 @@ void bind_pathspace(py::module_& m) {
            py::arg("sampler") = SamplerType::Independent);
 
   py::class_<BdptOptions>(m, "BdptOptions", "Options of bidirectional path tracing (keywords only).")
+      .def_readwrite("first_sample", &BdptOptions::first_sample,
+                     "First sample index rendered (one task of a split render; see Film).")
       .def_readwrite("skip_unneeded", &BdptOptions::skip_unneeded,
                      "Skip work the scene makes pointless (default True); False does it all.")
       .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
@@ -89,21 +96,22 @@ void bind_pathspace(py::module_& m) {
   m.def(
       "render_light",
       [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const LightTracerOptions& options,
-         const py::object& progress) {
+         const py::object& progress, bool accumulators) {
         check_emitters(*scene);
         RenderControl control;
         auto run = run_interruptible([&] { return render_light(*scene, camera, options, control); }, control,
                                      progress);
-        return result_dict(std::move(run.result), run.keyboard_interrupt);
+        return result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      py::arg("accumulators") = false,
       "Light-traces the scene (spp x pixels particles); returns dict(mean, variance, counts, light_paths, "
       "stats, keyboard_interrupt).");
 
   m.def(
       "render_bdpt",
       [](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const BdptOptions& options,
-         const py::object& progress) {
+         const py::object& progress, bool accumulators) {
         check_emitters(*scene);
         RenderControl control;
         auto run = run_interruptible([&] { return render_bdpt(*scene, camera, options, control); }, control,
@@ -117,11 +125,12 @@ void bind_pathspace(py::module_& m) {
                 to_numpy(film.layer_mean(layer), {film.height(), film.width(), 3});
           }
         }
-        py::dict d = result_dict(std::move(run.result), run.keyboard_interrupt);
+        py::dict d = result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
         d["strategies"] = strategies;
         return d;
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
+      py::arg("accumulators") = false,
       "Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, "
       "keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.");
 

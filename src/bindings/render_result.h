@@ -32,8 +32,29 @@ inline py::dict stats_dict(const RenderStats& s) {
   return d;
 }
 
-// Film and stats as numpy arrays and a dict; the arrays own the film's buffers.
-inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
+// A film's raw totals as numpy arrays (float64 sums, uint32 counts): what one task of a split
+// render returns, to be merged in block order by Film.add_accumulators (film.h).
+inline py::dict accumulators_dict(const Film& film) {
+  FilmAccumulators a = film.accumulators();
+  const py::ssize_t h = film.height(), w = film.width();
+  py::dict d;
+  d["sum"] = to_numpy(std::move(a.sum), {h, w, 3});
+  d["sum_sq"] = to_numpy(std::move(a.sum_sq), {h, w, 3});
+  d["count"] = to_numpy(std::move(a.count), {h, w});
+  if (a.splat_sum.empty()) {
+    d["splat_sum"] = py::none();
+    d["splat_sum_sq"] = py::none();
+  } else {
+    d["splat_sum"] = to_numpy(std::move(a.splat_sum), {h, w, 3});
+    d["splat_sum_sq"] = to_numpy(std::move(a.splat_sum_sq), {h, w, 3});
+  }
+  d["light_paths"] = a.light_paths;
+  return d;
+}
+
+// Film and stats as numpy arrays and a dict; the arrays own the film's buffers. With
+// `accumulators`, also the film's raw totals (accumulators_dict).
+inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt, bool accumulators = false) {
   const py::ssize_t h = r.film.height(), w = r.film.width();
   py::dict d;
   d["mean"] = to_numpy(r.film.mean(), {h, w, 3});
@@ -42,6 +63,7 @@ inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt) {
   d["light_paths"] = r.film.light_paths();
   d["stats"] = stats_dict(r.stats);
   d["keyboard_interrupt"] = keyboard_interrupt;
+  if (accumulators) d["accumulators"] = accumulators_dict(r.film);
   return d;
 }
 

@@ -8,19 +8,92 @@ namespace dualight {
 Film::Film(int width, int height) : width_(width), height_(height) {
   if (width < 1 || height < 1) throw std::invalid_argument("film must be at least 1x1");
   pixels_.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  block_.resize(pixels_.size());
 }
 
-void Film::add_splats(const SplatList& splats, uint64_t light_paths) {
-  if (splats_.empty()) splats_.resize(pixels_.size());
-  for (const Splat& s : splats.splats()) {
+void Film::add_splats(const Splat* first, const Splat* last, uint64_t light_paths) {
+  if (splats_.empty()) {
+    splats_.resize(pixels_.size());
+    splat_block_.resize(pixels_.size());
+  }
+  for (const Splat* it = first; it != last; ++it) {
+    const Splat& s = *it;
     if (s.layer == 0) {
-      splats_[s.pixel].add(s.value);
+      splat_block_[s.pixel].add(s.value);
     } else {
       double* splat = layers_[(s.layer - 1) * pixels_.size() + s.pixel].splat;
       for (int c = 0; c < 3; ++c) splat[c] += s.value[c];
     }
   }
   light_paths_ += light_paths;
+}
+
+void Film::end_splat_block() {
+  for (size_t i = 0; i < splats_.size(); ++i) splats_[i].add_block(splat_block_[i]);
+}
+
+void Film::end_blocks() {
+  for (size_t i = 0; i < pixels_.size(); ++i) end_block(i);
+  end_splat_block();
+}
+
+FilmAccumulators Film::accumulators() const {
+  FilmAccumulators a;
+  const size_t n = pixels_.size();
+  a.sum.resize(3 * n);
+  a.sum_sq.resize(3 * n);
+  a.count.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      a.sum[3 * i + c] = pixels_[i].sum[c];
+      a.sum_sq[3 * i + c] = pixels_[i].sum_sq[c];
+    }
+    a.count[i] = pixels_[i].count;
+  }
+  if (!splats_.empty()) {
+    a.splat_sum.resize(3 * n);
+    a.splat_sum_sq.resize(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        a.splat_sum[3 * i + c] = splats_[i].sum[c];
+        a.splat_sum_sq[3 * i + c] = splats_[i].sum_sq[c];
+      }
+    }
+  }
+  a.light_paths = light_paths_;
+  return a;
+}
+
+void Film::add_accumulators(const FilmAccumulators& a) {
+  const size_t n = pixels_.size();
+  if (a.sum.size() != 3 * n || a.sum_sq.size() != 3 * n || a.count.size() != n) {
+    throw std::invalid_argument("accumulators do not match the film's size");
+  }
+  const bool splats = !a.splat_sum.empty();
+  if (splats && (a.splat_sum.size() != 3 * n || a.splat_sum_sq.size() != 3 * n)) {
+    throw std::invalid_argument("splat accumulators do not match the film's size");
+  }
+  // The same additions as Film::end_block / end_splat_block: a block's sums onto the totals.
+  for (size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      pixels_[i].sum[c] += a.sum[3 * i + c];
+      pixels_[i].sum_sq[c] += a.sum_sq[3 * i + c];
+    }
+    pixels_[i].count += a.count[i];
+  }
+  if (splats) {
+    if (splats_.empty()) {
+      splats_.resize(n);
+      splat_block_.resize(n);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        splats_[i].sum[c] += a.splat_sum[3 * i + c];
+        splats_[i].sum_sq[c] += a.splat_sum_sq[3 * i + c];
+      }
+    }
+  }
+  light_paths_ += a.light_paths;
 }
 
 std::vector<float> Film::layer_mean(size_t layer) const {

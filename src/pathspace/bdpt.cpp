@@ -26,7 +26,7 @@ RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const 
   RenderResult result{Film(camera.width(), camera.height()), {}};
   if (options.strategy_images) result.film.add_layers(bdpt_strategies(options.max_depth).size());
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true,
-                                  connections_unoccluded(scene, camera, options.skip_unneeded)};
+                                  connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   tbb::enumerable_thread_specific<Subpaths> workspaces;
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList& splats) {
     return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &result.film);

@@ -17,6 +17,9 @@ struct EstimatorOptions {
   // Skip work the scene makes pointless (shadow rays in a convex enclosure, mutations that
   // cannot apply); false does it all, for benchmarks and checks of the skips themselves.
   bool skip_unneeded = true;
+  // Renders sample indices [first_sample, first_sample + spp) (particles times the pixel count
+  // for the light tracer): one task of a split render (film.h, sample blocks).
+  uint32_t first_sample = 0;
 };
 
 }  // namespace dualight

@@ -15,7 +15,9 @@ namespace dualight {
 namespace {
 
 // Particles are traced in chunks of a fixed size, each chunk's splats kept apart and added to the
-// film in chunk order: the image does not depend on the thread count or schedule.
+// film in chunk order: the image does not depend on the thread count or schedule. Chunks start
+// at multiples of kChunk from the start of their block of kBlockSpp x pixels particles (film.h),
+// whose splats are summed apart, so a render split into tasks of whole blocks is the same sum.
 constexpr uint64_t kChunk = 4096;
 // Particle i's random numbers: the sampler's "pixel" slot names the particle stream, its sample
 // index is i, so a Sobol sampler stratifies over all particles.
@@ -50,24 +52,35 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   RenderStats stats;
   std::atomic<uint64_t> rays{0}, skipped{0}, skipped_shadow{0};
   const bool unoccluded = connections_unoccluded(scene, camera, opt.skip_unneeded);
+  const uint64_t first_particle = static_cast<uint64_t>(opt.first_sample) * pixels;
+  const uint64_t block = static_cast<uint64_t>(kBlockSpp) * pixels;
+  const auto block_end = [&](uint64_t i) { return (i / block + 1) * block; };
   uint64_t invalid = 0;
   uint64_t traced = 0;
   uint64_t pass_chunks = 4;
   std::vector<SplatList> chunk_splats;
   std::vector<uint64_t> chunk_particles;
+  std::vector<std::pair<uint64_t, uint64_t>> chunk_range;
   while ((unbounded || traced < target) && !control.cancelled()) {
     if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
       stats.time_limited = true;
       break;
     }
-    const uint64_t remaining_chunks = unbounded ? pass_chunks : (target - traced + kChunk - 1) / kChunk;
-    const size_t n_chunks = static_cast<size_t>(std::min(pass_chunks, remaining_chunks));
+    // The pass's chunks: up to pass_chunks, none crossing a block's end or the target.
+    chunk_range.clear();
+    for (uint64_t i = first_particle + traced; chunk_range.size() < pass_chunks;) {
+      if (!unbounded && i >= first_particle + target) break;
+      uint64_t last = std::min(i + kChunk, block_end(i));
+      if (!unbounded) last = std::min(last, first_particle + target);
+      chunk_range.emplace_back(i, last);
+      i = last;
+    }
+    const size_t n_chunks = chunk_range.size();
     chunk_splats.resize(n_chunks);
     chunk_particles.assign(n_chunks, 0);
     const double pass_start = elapsed();
     parallel_for_each_index(opt.threads, n_chunks, [&](size_t chunk) {
-      const uint64_t first = traced + chunk * kChunk;
-      const uint64_t last = unbounded ? first + kChunk : std::min(first + kChunk, target);
+      const auto [first, last] = chunk_range[chunk];
       SplatList& splats = chunk_splats[chunk];
       splats.clear();
       Path path;
@@ -84,16 +97,19 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
     });
     // A cancelled pass keeps only its complete prefix of chunks, so the particle count is exact.
     for (size_t chunk = 0; chunk < n_chunks; ++chunk) {
+      const auto [first, last] = chunk_range[chunk];
       film.add_splats(chunk_splats[chunk], chunk_particles[chunk]);
       invalid += chunk_splats[chunk].invalid();
       traced += chunk_particles[chunk];
-      if (chunk_particles[chunk] < kChunk && traced != target) break;
+      if (chunk_particles[chunk] < last - first) break;
+      if (last == block_end(first)) film.end_splat_block();
     }
     if (control.cancelled()) break;
     // Aim for passes of about a quarter second so time limits and progress stay responsive.
     const double per_chunk = std::max(elapsed() - pass_start, 1e-6) / static_cast<double>(n_chunks);
     pass_chunks = static_cast<uint64_t>(std::clamp(0.25 / per_chunk, 1.0, 65536.0));
   }
+  film.end_blocks();  // the last block, when the render ends inside one
   stats.seconds = elapsed();
   stats.rays = rays.load();
   stats.skipped_connections = skipped.load();

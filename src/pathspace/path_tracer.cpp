@@ -96,7 +96,7 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
                          RenderControl& control) {
   RenderResult result{Film(camera.width(), camera.height()), {}};
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, false,
-                                  connections_unoccluded(scene, camera, options.skip_unneeded)};
+                                  connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
     return trace_path(scene, camera.generate_ray(x, y), options, sampler, counters);
   };

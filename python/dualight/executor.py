@@ -1,0 +1,200 @@
+"""Rendering split into tasks on a ``concurrent.futures.Executor``: a process pool, or a Dask
+cluster (``distributed.Client`` or ``client.get_executor()``), on one machine or many.
+
+Bit for bit the same image as one process, by construction (``src/film/film.h``): the core sums
+samples and splats within fixed blocks of ``_core.BLOCK_SPP`` sample indices (for the light
+tracer, of ``BLOCK_SPP`` x pixels particles), each block from zero in a fixed order, and adds
+the blocks' sums to the film's totals in block order, whether it renders in one process or not.
+Each task here renders exactly one block (``first_sample`` = k x ``BLOCK_SPP``) into a film of
+its own, so its raw accumulators *are* that block's sums; the merge adds them to an empty
+``_core.Film`` in block order with the same C++ additions, and the mean and variance come from
+the same C++ code. Several blocks per task would not do: their sum would round differently.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import os
+import time
+import uuid
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from dualight.scene import Camera, Scene
+
+# Methods whose work splits into sample blocks. The MLT methods run chains in rounds whose
+# start-up (bootstrap, direct light) is shared, and are not split yet.
+SPLITTABLE = ("path", "light", "bdpt")
+
+# Compiled scenes of the renders this worker process has run tasks for (by render token), so
+# that a worker builds Embree's BVH once per render, not once per task.
+_COMPILED: dict[str, Any] = {}
+_COMPILED_KEEP = 2
+
+
+def as_executor(executor: Any) -> concurrent.futures.Executor:
+    """``executor`` as a ``concurrent.futures.Executor``: a ``distributed.Client`` gives its
+    ``get_executor()``; anything else that is not an Executor is a TypeError."""
+    if isinstance(executor, concurrent.futures.Executor):
+        return executor
+    if type(executor).__module__.split(".")[0] == "distributed" and hasattr(
+        executor, "get_executor"
+    ):
+        return executor.get_executor()
+    raise TypeError(
+        "executor must be a concurrent.futures.Executor (e.g. ProcessPoolExecutor, or a Dask "
+        f"client's get_executor()) or a distributed.Client, got {type(executor).__name__}"
+    )
+
+
+def _options(method: str, opts: dict[str, Any], first_sample: int, spp: int) -> Any:
+    from dualight import _core
+
+    common = dict(
+        spp=spp,
+        max_depth=opts["max_depth"],
+        rr_depth=opts["rr_depth"],
+        seed=opts["seed"],
+        threads=opts["threads"],
+        sampler=getattr(_core.SamplerType, opts["sampler"]),
+    )
+    if method == "path":
+        options = _core.PathTracerOptions(**common)
+    elif method == "light":
+        options = _core.LightTracerOptions(**common)
+    else:
+        options = _core.BdptOptions(
+            **common, heuristic=getattr(_core.MisHeuristic, opts["heuristic"])
+        )
+    options.skip_unneeded = opts["skip"]
+    options.first_sample = first_sample
+    return options
+
+
+def render_block(
+    token: str,
+    scene: Scene,
+    camera: Camera,
+    method: str,
+    opts: dict[str, Any],
+    first_sample: int,
+    spp: int,
+) -> dict[str, Any]:
+    """One task: sample indices ``[first_sample, first_sample + spp)`` (one block) of the render
+    named by ``token``; returns the film's raw accumulators and the core's stats."""
+    from dualight import _core
+
+    cpu_start = time.process_time()
+    compiled = _COMPILED.get(token)
+    if compiled is None:
+        compiled = scene._compile()
+        while len(_COMPILED) >= _COMPILED_KEEP:
+            _COMPILED.pop(next(iter(_COMPILED)))
+        _COMPILED[token] = compiled
+    run = {"path": _core.render_path, "light": _core.render_light, "bdpt": _core.render_bdpt}
+    result = run[method](
+        compiled, camera._compile(), _options(method, opts, first_sample, spp), None,
+        accumulators=True,
+    )
+    stats = dict(result["stats"])
+    stats["cpu_seconds"] = time.process_time() - cpu_start  # the worker's, compile included
+    return {
+        "accumulators": result["accumulators"],
+        "stats": stats,
+        "keyboard_interrupt": result["keyboard_interrupt"],
+        "worker": os.getpid(),
+    }
+
+
+_SUMMED = ("samples", "rays", "skipped_connections", "skipped_shadow_rays", "invalid_samples")
+
+
+def render_split(
+    executor: concurrent.futures.Executor,
+    scene: Scene,
+    camera: Camera,
+    method: str,
+    opts: dict[str, Any],
+    spp: int,
+    progress: Callable[[int, int], None] | None,
+) -> dict[str, Any]:
+    """Renders ``spp`` samples per pixel as one task per block on ``executor`` and merges the
+    blocks in order. Returns a dict like the core's (mean, variance, light_paths, stats,
+    keyboard_interrupt). Ctrl-C cancels the tasks not started and returns what has finished."""
+    from dualight import _core
+
+    block = int(_core.BLOCK_SPP)
+    token = uuid.uuid4().hex
+    width, height = camera.resolution
+    pixels = width * height
+    blocks = [(first, min(block, spp - first)) for first in range(0, spp, block)]
+    start = time.perf_counter()
+    futures = {
+        executor.submit(render_block, token, scene, camera, method, opts, first, count): k
+        for k, (first, count) in enumerate(blocks)
+    }
+    film = _core.Film(width, height)
+    stats: dict[str, Any] = {key: 0 for key in _SUMMED}
+    stats.update(task_seconds=0.0, task_cpu_seconds=0.0, unoccluded=False, workers=set())
+    done: dict[int, dict[str, Any]] = {}
+    merged = 0
+    interrupted = False
+
+    def merge(result: dict[str, Any]) -> None:
+        film.add_accumulators(result["accumulators"])
+        task = result["stats"]
+        for key in _SUMMED:
+            stats[key] += task[key]
+        stats["task_seconds"] += task["seconds"]
+        stats["task_cpu_seconds"] += task["cpu_seconds"]
+        stats["unoccluded"] = task["unoccluded"]
+        stats["workers"].add(result["worker"])
+
+    try:
+        for future in concurrent.futures.as_completed(futures):
+            k = futures[future]
+            done[k] = future.result()
+            interrupted = interrupted or done[k]["keyboard_interrupt"]
+            # Blocks are added in block order: a finished block waits for those before it.
+            while merged in done:
+                merge(done.pop(merged))
+                merged += 1
+            if progress is not None:
+                finished = sum(blocks[j][1] for j in range(merged)) + sum(
+                    blocks[j][1] for j in done
+                )
+                progress(finished * pixels, spp * pixels)
+    except KeyboardInterrupt:
+        interrupted = True
+        for future in futures:
+            future.cancel()
+        for k in sorted(done):  # still in block order, with the unfinished blocks left out
+            merge(done.pop(k))
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
+
+    seconds = time.perf_counter() - start
+    counts = film.counts()
+    stats.update(
+        # The light tracer's samples are particles, not the pixels' own samples.
+        spp=int(film.light_paths // pixels) if method == "light" else int(counts.min()),
+        seconds=seconds,
+        samples_per_second=stats["samples"] / seconds if seconds > 0 else 0.0,
+        rays_per_second=stats["rays"] / seconds if seconds > 0 else 0.0,
+        interrupted=interrupted,
+        time_limited=False,
+        tasks=len(blocks),
+        workers=len(stats["workers"]),
+        executor=type(executor).__name__,
+    )
+    return {
+        "mean": np.asarray(film.mean()),
+        "variance": np.asarray(film.variance()),
+        "light_paths": int(film.light_paths),
+        "stats": stats,
+        "keyboard_interrupt": interrupted,
+    }
