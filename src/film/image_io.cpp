@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -34,7 +35,26 @@ void write_image(const std::string& path, int width, int height, int channels, c
   if (!out->close()) throw std::runtime_error("cannot close '" + path + "': " + out->geterror());
 }
 
+namespace {
+
+LoadedImage read_image_unchecked(const std::string& path);
+
+}  // namespace
+
 LoadedImage read_image(const std::string& path) {
+  // A damaged header can also make the decoder itself ask for more memory than there is (found by
+  // fuzzing: an EXR whose chunk table was out of all proportion): that is a bad file, not a crash.
+  try {
+    return read_image_unchecked(path);
+  } catch (const std::bad_alloc&) {
+    throw std::invalid_argument("cannot read image '" + path +
+                                "': decoding it asks for more memory than is available (a damaged header?)");
+  }
+}
+
+namespace {
+
+LoadedImage read_image_unchecked(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::invalid_argument("cannot read image '" + path + "': " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
@@ -75,5 +95,7 @@ LoadedImage read_image(const std::string& path) {
   in->close();
   return img;
 }
+
+}  // namespace
 
 }  // namespace dualight

@@ -48,11 +48,18 @@ def _read_mtl_files(obj: Path) -> dict[str, dict[str, Any]]:
         parts = line.strip().split(maxsplit=1)
         if len(parts) == 2 and parts[0] == "mtllib":
             mtl = obj.parent / parts[1].strip()
-            if not mtl.is_file():
+            try:  # a name the file system cannot hold (too long, NUL) is a bad file too
+                found = mtl.is_file()
+                mtl_text = mtl.read_text(errors="replace") if found else ""
+            except (OSError, ValueError) as exc:
+                raise ValueError(
+                    f"cannot read MTL file {parts[1].strip()[:80]!r} named by mtllib in "
+                    f"{str(obj)!r}: {exc}"
+                ) from exc
+            if not found:
                 raise FileNotFoundError(
                     f"no such MTL file: {str(mtl)!r} (named by mtllib in {str(obj)!r})"
                 )
-            mtl_text = mtl.read_text(errors="replace")
             try:
                 parsed = parse_mtl(mtl_text)
             except Exception as exc:  # noqa: BLE001
