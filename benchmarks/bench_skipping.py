@@ -51,46 +51,12 @@ RESULTS = Path(__file__).resolve().parent / "results"
 RES = (64, 64)
 
 
-def _student_t_sf2(t: float, dof: float) -> float:
-    """Two-sided p-value of Student's t (regularised incomplete beta by continued fraction)."""
-    x = dof / (dof + t * t)
-    a, b = dof / 2.0, 0.5
-
-    def betacf(a: float, b: float, x: float) -> float:
-        qab, qap, qam = a + b, a + 1.0, a - 1.0
-        c, d = 1.0, 1.0 - qab * x / qap
-        d = 1.0 / (d if abs(d) > 1e-300 else 1e-300)
-        h = d
-        for m in range(1, 300):
-            m2 = 2 * m
-            aa = m * (b - m) * x / ((qam + m2) * (a + m2))
-            d = 1.0 + aa * d
-            d = 1.0 / (d if abs(d) > 1e-300 else 1e-300)
-            c = 1.0 + aa / c if abs(1.0 + aa / c) > 1e-300 else 1e-300
-            h *= d * c
-            aa = -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2))
-            d = 1.0 + aa * d
-            d = 1.0 / (d if abs(d) > 1e-300 else 1e-300)
-            c = 1.0 + aa / c if abs(1.0 + aa / c) > 1e-300 else 1e-300
-            delta = d * c
-            h *= delta
-            if abs(delta - 1.0) < 1e-12:
-                break
-        return h
-
-    lbeta = math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b)
-    front = math.exp(lbeta + a * math.log(x) + b * math.log(1.0 - x))
-    if x < (a + 1.0) / (a + b + 2.0):
-        return front * betacf(a, b, x) / a
-    return 1.0 - front * betacf(b, a, 1.0 - x) / b
-
-
 def welch_means(a: list[float], b: list[float]) -> dict[str, float]:
     """Welch's t test of two samples' means: t, degrees of freedom, two-sided p."""
     va, vb = statistics.variance(a) / len(a), statistics.variance(b) / len(b)
     t = (statistics.fmean(a) - statistics.fmean(b)) / math.sqrt(va + vb)
     dof = (va + vb) ** 2 / (va**2 / (len(a) - 1) + vb**2 / (len(b) - 1))
-    return {"t": t, "dof": dof, "p": _student_t_sf2(abs(t), dof)}
+    return {"t": t, "dof": dof, "p": metrics.student_t_p_value(t, dof)}
 
 
 def timed(run: Callable[[bool], Any], repeats: int) -> tuple[float, float, Any, Any]:

@@ -268,3 +268,18 @@ def test_block_mean_averages_blocks() -> None:
     assert metrics.block_mean(image, 4).shape == (1, 1, 3)  # trailing columns dropped
     with pytest.raises(ValueError, match="block"):
         metrics.block_mean(image, 5)
+
+
+def test_student_t_matches_tabulated_values() -> None:
+    # Two-sided 5 % and 1 % points from standard tables; Welch's non-integer dof works too.
+    assert metrics.student_t_critical(10, 0.05) == pytest.approx(2.228139, abs=1e-6)
+    assert metrics.student_t_critical(1, 0.05) == pytest.approx(12.706205, abs=1e-6)
+    assert metrics.student_t_critical(23, 0.01) == pytest.approx(2.807336, abs=1e-6)
+    assert metrics.student_t_critical(1e7, 0.05) == pytest.approx(1.959964, abs=1e-5)
+    assert metrics.student_t_p_value(2.228139, 10) == pytest.approx(0.05, abs=1e-7)
+    assert metrics.student_t_p_value(-2.228139, 10) == pytest.approx(0.05, abs=1e-7)
+    assert metrics.student_t_p_value(0.0, 3.5) == 1.0
+    # Negative control: the normal's value is not the t's at few degrees of freedom.
+    assert abs(metrics.student_t_critical(5, 0.05) - 1.959964) > 0.5
+    with pytest.raises(ValueError, match="dof"):
+        metrics.student_t_p_value(1.0, 0.0)

@@ -22,18 +22,6 @@ RUNS, MPP, BLOCK = 12, 24, 8
 ALPHA = 0.01
 
 
-def _t_critical(dof: int, alpha_per_test: float) -> float:
-    """Two-sided Student-t critical value (numerical integration of the density; no SciPy)."""
-    t = np.linspace(0.0, 400.0, 2_000_001)
-    log_c = math.lgamma((dof + 1) / 2) - math.lgamma(dof / 2) - 0.5 * math.log(dof * math.pi)
-    pdf = np.exp(log_c - (dof + 1) / 2 * np.log1p(t * t / dof))
-    tail = 2.0 * (
-        np.trapezoid(pdf, t)
-        - np.concatenate([[0.0], np.cumsum((pdf[1:] + pdf[:-1]) / 2 * np.diff(t))])
-    )
-    return float(t[np.argmax(tail < alpha_per_test)])
-
-
 SCENES = {
     "cornell": scenes.cornell_box,
     "caustics": functools.partial(scenes.cornell_box, variant="caustics"),
@@ -115,7 +103,7 @@ def _block_test(runs: list[dualight.Image], scene: str = "cornell") -> tuple[flo
     ref_block_var = metrics.block_mean(ref_var, BLOCK) / BLOCK**2
     t = np.abs(mean - ref_blocks) / np.sqrt(var_of_mean + ref_block_var)
     alpha_per_test = -math.expm1(math.log1p(-ALPHA) / t.size)
-    critical = _t_critical(len(runs) - 1, alpha_per_test)
+    critical = metrics.student_t_critical(len(runs) - 1, alpha_per_test)
     passed = np.all(t < critical, axis=2)
     return float(passed.mean()), float(t.max()), critical
 

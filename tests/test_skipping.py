@@ -15,15 +15,18 @@ RES = (32, 32)
 
 
 def _furnace(rho: float = 0.5, camera_inside: bool = True) -> dl.Scene:
-    scene = scenes.furnace(rho, 1.0, resolution=RES)
-    if not camera_inside:
-        outside = dl.Camera(
-            origin=(0.5, 0.5, -2.0), target=(0.5, 0.5, 0.5), up=(0, 1, 0), fov=40.0, resolution=RES
-        )
-        scene = dl.Scene(camera=outside)
-        # A cube seen from outside: its faces turned outwards, so the camera sees them.
-        v, f = scenes.furnace(rho, 1.0).meshes[0].vertices, scenes.furnace().meshes[0].triangles
-        scene.add_mesh(v, f[:, ::-1], reflectance=(rho,) * 3, emission=(1.0,) * 3, name="cube")
+    furnace = scenes.furnace(rho, 1.0, resolution=RES)
+    if camera_inside:
+        return furnace
+    outside = dl.Camera(
+        origin=(0.5, 0.5, -2.0), target=(0.5, 0.5, 0.5), up=(0, 1, 0), fov=40.0, resolution=RES
+    )
+    scene = dl.Scene(camera=outside)
+    # A cube seen from outside: its faces turned outwards, so the camera sees them.
+    cube = furnace.meshes[0]
+    scene.add_mesh(
+        cube.vertices, cube.triangles[:, ::-1], reflectance=(rho,) * 3, emission=(1.0,) * 3
+    )
     return scene
 
 

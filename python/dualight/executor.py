@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from dualight.render import _estimator
 from dualight.scene import Camera, Scene
 
 # Methods whose work splits into sample blocks. The MLT methods run chains in rounds whose
@@ -49,30 +50,6 @@ def as_executor(executor: Any) -> concurrent.futures.Executor:
     )
 
 
-def _options(method: str, opts: dict[str, Any], first_sample: int, spp: int) -> Any:
-    from dualight import _core
-
-    common = dict(
-        spp=spp,
-        max_depth=opts["max_depth"],
-        rr_depth=opts["rr_depth"],
-        seed=opts["seed"],
-        threads=opts["threads"],
-        sampler=getattr(_core.SamplerType, opts["sampler"]),
-    )
-    if method == "path":
-        options = _core.PathTracerOptions(**common)
-    elif method == "light":
-        options = _core.LightTracerOptions(**common)
-    else:
-        options = _core.BdptOptions(
-            **common, heuristic=getattr(_core.MisHeuristic, opts["heuristic"])
-        )
-    options.skip_unneeded = opts["skip"]
-    options.first_sample = first_sample
-    return options
-
-
 def render_block(
     token: str,
     scene: Scene,
@@ -84,8 +61,6 @@ def render_block(
 ) -> dict[str, Any]:
     """One task: sample indices ``[first_sample, first_sample + spp)`` (one block) of the render
     named by ``token``; returns the film's raw accumulators and the core's stats."""
-    from dualight import _core
-
     cpu_start = time.process_time()
     compiled = _COMPILED.get(token)
     if compiled is None:
@@ -93,11 +68,9 @@ def render_block(
         while len(_COMPILED) >= _COMPILED_KEEP:
             _COMPILED.pop(next(iter(_COMPILED)))
         _COMPILED[token] = compiled
-    run = {"path": _core.render_path, "light": _core.render_light, "bdpt": _core.render_bdpt}
-    result = run[method](
-        compiled, camera._compile(), _options(method, opts, first_sample, spp), None,
-        accumulators=True,
-    )
+    run, options = _estimator(method, spp=spp, time_limit=0.0, **opts)
+    options.first_sample = first_sample
+    result = run(compiled, camera._compile(), options, None, accumulators=True)
     stats = dict(result["stats"])
     stats["cpu_seconds"] = time.process_time() - cpu_start  # the worker's, compile included
     return {

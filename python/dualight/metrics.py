@@ -133,6 +133,67 @@ def _z_critical(alpha_per_test: float) -> float:
     return 0.5 * (lo + hi)
 
 
+def _incomplete_beta_fraction(a: float, b: float, x: float) -> float:
+    """Continued fraction of the regularised incomplete beta function (modified Lentz)."""
+    tiny = 1e-300
+    qab, qap, qam = a + b, a + 1.0, a - 1.0
+    c, d = 1.0, 1.0 - qab * x / qap
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    h = d
+    for m in range(1, 500):
+        for aa in (
+            m * (b - m) * x / ((qam + 2 * m) * (a + 2 * m)),
+            -(a + m) * (qab + m) * x / ((a + 2 * m) * (qap + 2 * m)),
+        ):
+            d = 1.0 + aa * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + aa / c
+            c = c if abs(c) > tiny else tiny
+            h *= d * c
+        if abs(d * c - 1.0) < 1e-14:
+            break
+    return h
+
+
+def student_t_p_value(t: float, dof: float) -> float:
+    """Two-sided p-value ``P(|T| >= |t|)`` of Student's t with ``dof`` degrees of freedom (any
+    positive real, as Welch's test gives): the regularised incomplete beta function
+    ``I_x(dof / 2, 1 / 2)`` at ``x = dof / (dof + t^2)``, by its continued fraction (no SciPy)."""
+    if not (dof > 0 and math.isfinite(t)):
+        raise ValueError(f"need dof > 0 and a finite t, got t={t!r}, dof={dof!r}")
+    x = dof / (dof + t * t)
+    if x >= 1.0:
+        return 1.0
+    a, b = 0.5 * dof, 0.5
+    log_front = (
+        math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b) + a * math.log(x) + b * math.log1p(-x)
+    )
+    front = math.exp(log_front)
+    if x < (a + 1.0) / (a + b + 2.0):
+        return front * _incomplete_beta_fraction(a, b, x) / a
+    return 1.0 - front * _incomplete_beta_fraction(b, a, 1.0 - x) / b
+
+
+@lru_cache(maxsize=256)
+def student_t_critical(dof: float, alpha: float) -> float:
+    """Two-sided Student-t critical value: the ``t`` with ``student_t_p_value(t, dof) == alpha``
+    (bisection)."""
+    if not 0.0 < alpha < 1.0:
+        raise ValueError(f"alpha must be in (0, 1), got {alpha}")
+    lo, hi = 0.0, 1.0
+    while student_t_p_value(hi, dof) > alpha:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if student_t_p_value(mid, dof) > alpha:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-12 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
 @dataclass(frozen=True, eq=False)
 class WelchResult:
     """Outcome of :func:`welch_test`.

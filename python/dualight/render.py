@@ -120,6 +120,72 @@ def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
     return out
 
 
+def _estimator(
+    method: str,
+    *,
+    spp: int,
+    max_depth: int,
+    rr_depth: int,
+    seed: int,
+    threads: int,
+    time_limit: float,
+    sampler: str,
+    heuristic: str,
+    strategy_images: bool = False,
+    mlt: dict[str, Any] | None = None,
+    skip: bool = True,
+) -> tuple[Callable[..., dict[str, Any]], Any]:
+    """The core's render function for ``method`` and its options (arguments already checked):
+    shared by :func:`render` and the tasks of :mod:`dualight.executor`."""
+    from dualight import _core
+
+    common = dict(
+        spp=spp,
+        max_depth=max_depth,
+        rr_depth=rr_depth,
+        seed=seed,
+        threads=threads,
+        time_limit=time_limit,
+        sampler=getattr(_core.SamplerType, sampler),
+    )
+    if method == "path":
+        run, options = _core.render_path, _core.PathTracerOptions(**common)
+    elif method == "light":
+        run, options = _core.render_light, _core.LightTracerOptions(**common)
+    elif method == "mlt":
+        common["mutations_per_pixel"] = common.pop("spp")
+        common.pop("sampler")
+        run, options = (
+            _core.render_mlt,
+            _core.MltOptions(
+                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
+            ),
+        )
+    elif method in _MLT:
+        common["mutations_per_pixel"] = common.pop("spp")
+        common.pop("sampler")
+        run, options = (
+            _core.render_pssmlt,
+            _core.PssmltOptions(
+                **common,
+                heuristic=getattr(_core.MisHeuristic, heuristic),
+                multiplexed=method == "mmlt",
+                **(mlt or {}),
+            ),
+        )
+    else:
+        run, options = (
+            _core.render_bdpt,
+            _core.BdptOptions(
+                **common,
+                heuristic=getattr(_core.MisHeuristic, heuristic),
+                strategy_images=strategy_images,
+            ),
+        )
+    options.skip_unneeded = skip
+    return run, options
+
+
 def render(
     scene: Scene,
     method: str = "path",
@@ -315,52 +381,20 @@ def render(
     cam = camera or scene.camera
     assert cam is not None
 
-    from dualight import _core
-
-    common = dict(
+    run, options = _estimator(
+        method,
         spp=spp or 0,
         max_depth=max_depth,
         rr_depth=rr_depth,
         seed=seed,
         threads=threads or 0,
         time_limit=time_limit or 0.0,
-        sampler=getattr(_core.SamplerType, sampler),
+        sampler=sampler,
+        heuristic=heuristic,
+        strategy_images=strategy_images,
+        mlt=mlt,
+        skip=skip,
     )
-    if method == "path":
-        run, options = _core.render_path, _core.PathTracerOptions(**common)
-    elif method == "light":
-        run, options = _core.render_light, _core.LightTracerOptions(**common)
-    elif method == "mlt":
-        common["mutations_per_pixel"] = common.pop("spp")
-        common.pop("sampler")
-        run, options = (
-            _core.render_mlt,
-            _core.MltOptions(
-                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
-            ),
-        )
-    elif method in _MLT:
-        common["mutations_per_pixel"] = common.pop("spp")
-        common.pop("sampler")
-        run, options = (
-            _core.render_pssmlt,
-            _core.PssmltOptions(
-                **common,
-                heuristic=getattr(_core.MisHeuristic, heuristic),
-                multiplexed=method == "mmlt",
-                **(mlt or {}),
-            ),
-        )
-    else:
-        run, options = (
-            _core.render_bdpt,
-            _core.BdptOptions(
-                **common,
-                heuristic=getattr(_core.MisHeuristic, heuristic),
-                strategy_images=strategy_images,
-            ),
-        )
-    options.skip_unneeded = skip
     bar = None
     callback: ProgressCallback | None
     if progress is True:

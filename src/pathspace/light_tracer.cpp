@@ -50,8 +50,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   RenderStats stats;
-  std::atomic<uint64_t> rays{0}, skipped{0}, skipped_shadow{0};
-  const bool unoccluded = connections_unoccluded(scene, camera, opt.skip_unneeded);
+  SharedTraceCounters work(connections_unoccluded(scene, camera, opt.skip_unneeded));
   const uint64_t first_particle = static_cast<uint64_t>(opt.first_sample) * pixels;
   const uint64_t block = static_cast<uint64_t>(kBlockSpp) * pixels;
   const auto block_end = [&](uint64_t i) { return (i / block + 1) * block; };
@@ -84,15 +83,13 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
       SplatList& splats = chunk_splats[chunk];
       splats.clear();
       Path path;
-      TraceCounters local = trace_counters(unoccluded);
+      TraceCounters local = work.local();
       for (uint64_t i = first; i < last; ++i) {
         if ((i & 255u) == 0 && control.cancelled()) break;
         trace_particle<Sampler>(scene, camera, opt, i, path, splats, local);
         ++chunk_particles[chunk];
       }
-      rays.fetch_add(local.rays, std::memory_order_relaxed);
-      skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
-      skipped_shadow.fetch_add(local.skipped_shadow_rays, std::memory_order_relaxed);
+      work.add(local);
       control.done.fetch_add(chunk_particles[chunk], std::memory_order_relaxed);
     });
     // A cancelled pass keeps only its complete prefix of chunks, so the particle count is exact.
@@ -111,10 +108,7 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   }
   film.end_blocks();  // the last block, when the render ends inside one
   stats.seconds = elapsed();
-  stats.rays = rays.load();
-  stats.skipped_connections = skipped.load();
-  stats.skipped_shadow_rays = skipped_shadow.load();
-  stats.unoccluded = unoccluded;
+  work.into(stats);
   stats.invalid_samples = invalid;
   stats.interrupted = control.cancelled();
   stats.samples = traced;

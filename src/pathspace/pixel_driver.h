@@ -16,7 +16,6 @@
 #include "film/film.h"
 #include "film/splat_list.h"
 #include "pathspace/render_stats.h"
-#include "pathspace/shadow_ray.h"
 
 namespace dualight {
 
@@ -47,7 +46,8 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   const bool unbounded = opt.spp == 0;
   control.total.store(unbounded ? 0 : n_pixels * opt.spp);
 
-  std::atomic<uint64_t> rays{0}, skipped{0}, skipped_shadow{0}, invalid{0};
+  SharedTraceCounters work(opt.unoccluded);
+  std::atomic<uint64_t> invalid{0};
   // Per tile: its splats, and for each sample index of the pass where they end and how many
   // pixels (light paths) it covered.
   struct TileSplats {
@@ -74,7 +74,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
       const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
       const int x1 = std::min(x0 + kTile, w), y1 = std::min(y0 + kTile, h);
-      TraceCounters local = trace_counters(opt.unoccluded);
+      TraceCounters local = work.local();
       uint64_t local_invalid = 0;
       SplatList& splats = opt.light_paths ? tile_splats[tile].list : no_splats;
       splats.clear();
@@ -104,9 +104,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
         if (opt.light_paths) tile_splats[tile].rows.emplace_back(splats.splats().size(), row_paths);
         control.done.fetch_add(row_paths, std::memory_order_relaxed);
       }
-      rays.fetch_add(local.rays, std::memory_order_relaxed);
-      skipped.fetch_add(local.skipped_connections, std::memory_order_relaxed);
-      skipped_shadow.fetch_add(local.skipped_shadow_rays, std::memory_order_relaxed);
+      work.add(local);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
     if (opt.light_paths) {
@@ -135,10 +133,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   film.end_blocks();  // the last block, when the render ends inside one
 
   stats.seconds = elapsed();
-  stats.rays = rays.load();
-  stats.skipped_connections = skipped.load();
-  stats.skipped_shadow_rays = skipped_shadow.load();
-  stats.unoccluded = opt.unoccluded;
+  work.into(stats);
   stats.invalid_samples = invalid.load();
   stats.interrupted = control.cancelled();
   const std::vector<uint32_t> counts = film.sample_counts();

@@ -15,12 +15,6 @@ inline bool connections_unoccluded(const Scene& scene, const PinholeCamera& came
   return skip_unneeded && scene.features().unoccluded() && scene.features().encloses(camera.origin());
 }
 
-inline TraceCounters trace_counters(bool unoccluded) {
-  TraceCounters c;
-  c.unoccluded = unoccluded;
-  return c;
-}
-
 // Scene::visible, or true without a ray when the counters say connections are unoccluded.
 inline bool shadow_ray_visible(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target,
                                TraceCounters& counters) {
