@@ -1,7 +1,9 @@
 """Speed-up of render(executor=...) with 2 workers, and that its image is the same.
 
-On the Cornell box (128x128), path tracing and BDPT at a fixed spp, the median wall time of
-``--repeats`` runs (alternating) of:
+On the Cornell box (128x128), path tracing and BDPT at a fixed spp, and PSSMLT, MMLT and
+path-space MLT at a fixed number of mutations per pixel (their default options: 100,000
+bootstrap samples, 256 chains, 128 spp of direct light; ``max_depth`` 8 for all MLT methods,
+as MMLT needs one), the median wall time of ``--repeats`` runs (alternating) of:
 
 * ``render(threads=1)``: one process, one thread (the baseline);
 * ``render(threads=2)``: one process, two TBB threads;
@@ -9,6 +11,10 @@ On the Cornell box (128x128), path tracing and BDPT at a fixed spp, the median w
   (its start-up, about a second, is timed apart and left out); each render sends the scene
   and compiles it once per worker, which is counted;
 * ``render(executor=pool)``: a ``ProcessPoolExecutor(2)``, each task single-threaded.
+
+A split MLT render runs its start-up (direct light, bootstrap) in this process on every core
+(2 here), then the chains as tasks of 16 chains on the workers; the split row's speed-up is
+the whole render's, start-up included.
 
 Every split render is checked against the single-process image (``np.array_equal`` of mean
 and variance, same seed and spp). Writes ``benchmarks/results/bench_executor.json`` and prints
@@ -47,7 +53,11 @@ def main() -> None:
     from distributed import Client, LocalCluster
 
     repeats = 1 if args.quick else args.repeats
-    budgets = {"path": 64, "bdpt": 32} if args.quick else {"path": 512, "bdpt": 128}
+    budgets = (
+        {"path": 64, "bdpt": 32, "pssmlt": 16, "mmlt": 16, "mlt": 32}
+        if args.quick
+        else {"path": 512, "bdpt": 128, "pssmlt": 128, "mmlt": 128, "mlt": 512}
+    )
     scene = scenes.cornell_box(resolution=RES)
     start = time.perf_counter()
     cluster = LocalCluster(
@@ -61,7 +71,9 @@ def main() -> None:
     runs: dict[str, Any] = {}
     try:
         for method, spp in budgets.items():
-            kwargs = dict(spp=spp, seed=1, progress=False)
+            kwargs: dict[str, Any] = dict(spp=spp, seed=1, progress=False)
+            if method in ("pssmlt", "mmlt", "mlt"):
+                kwargs["max_depth"] = 8
             setups = {
                 "threads=1": dict(threads=1),
                 "threads=2": dict(threads=2),
@@ -130,7 +142,7 @@ def main() -> None:
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(out, indent=2) + "\n")
     print(f"Dask LocalCluster start-up (not timed below): {cluster_seconds:.2f} s")
-    print("| method | spp | setup | median s | speed-up over threads=1 | same image |")
+    print("| method | spp (mutations) | setup | median s | speed-up over threads=1 | same image |")
     print("|---|---|---|---|---|---|")
     for method, r in runs.items():
         for name, m in r["median_seconds"].items():

@@ -1,5 +1,6 @@
-"""render(executor=...): samples split into tasks on a process pool or a Dask cluster give the
-single-process image bit for bit (mean and variance), with the same seed and spp."""
+"""render(executor=...): samples (or Metropolis chains) split into tasks on a process pool or a
+Dask cluster give the single-process image bit for bit (mean and variance; MLT's b), with the
+same seed and spp."""
 
 from __future__ import annotations
 
@@ -12,8 +13,14 @@ import pytest
 
 import dualight
 from dualight import _core, scenes
+from dualight.executor import CHAINS_PER_TASK
+from dualight.render import _estimator
 
 SPP = 40  # blocks of 16, 16 and 8 samples per pixel: a short last block too
+# Small Metropolis renders: 40 chains make tasks of 16, 16 and 8 chains (mmlt: as its path
+# lengths' populations come out); direct light on so that the start-up's image counts too.
+MLT_OPTIONS = dict(bootstrap=3000, chains=40, direct_spp=4)
+MUTATIONS = 24
 
 
 @pytest.fixture(scope="module")
@@ -88,6 +95,12 @@ def test_dask_local_cluster_gives_the_single_process_image_bit_for_bit(
         assert _same(single, by_executor)
         other = dualight.render(scene, "path", spp=SPP, seed=5, progress=False, executor=client)
         assert not np.array_equal(np.asarray(other), np.asarray(single))
+        for method in ("mmlt", "mlt"):
+            single = _mlt(scene, method, threads=2)
+            by_client = _mlt(scene, method, executor=client)
+            assert np.array_equal(np.asarray(single), np.asarray(by_client))
+            assert by_client.stats["b"] == single.stats["b"]
+            assert by_client.stats["workers"] == 2
 
 
 def test_scene_pickles_without_its_compiled_form(scene: dualight.Scene) -> None:
@@ -128,13 +141,110 @@ def test_bad_executor_and_unsupported_options(
     for bad in ("pool", object(), 2):
         with pytest.raises(TypeError, match="concurrent.futures.Executor"):
             dualight.render(scene, spp=4, progress=False, executor=bad)
-    for method in ("pssmlt", "mmlt", "mlt"):
-        with pytest.raises(ValueError, match=f"not supported for method '{method}'"):
-            dualight.render(scene, method, spp=4, max_depth=4, progress=False, executor=pool)
     with pytest.raises(ValueError, match="time_limit"):
         dualight.render(scene, spp=4, time_limit=1.0, progress=False, executor=pool)
+    with pytest.raises(ValueError, match="time_limit"):
+        dualight.render(scene, "mlt", spp=None, time_limit=1.0, progress=False, executor=pool)
     with pytest.raises(ValueError, match="strategy_images"):
         dualight.render(
             scene, "bdpt", spp=4, max_depth=3, strategy_images=True, progress=False,
             executor=pool,
         )
+
+
+def _mlt(scene: dualight.Scene, method: str, **kwargs: object) -> dualight.Image:
+    options = dict(spp=MUTATIONS, seed=9, max_depth=6, progress=False, mlt=dict(MLT_OPTIONS))
+    options.update(kwargs)
+    return dualight.render(scene, method, **options)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("method", ["pssmlt", "mmlt", "mlt"])
+def test_process_pool_gives_the_single_process_mlt_image_bit_for_bit(
+    scene: dualight.Scene, pool: ProcessPoolExecutor, method: str
+) -> None:
+    single = _mlt(scene, method, threads=2)
+    split = _mlt(scene, method, executor=pool)
+    assert np.array_equal(np.asarray(single), np.asarray(split))
+    assert np.any(np.asarray(split) > 0)
+    s, t = split.stats, single.stats
+    assert s["tasks"] >= 3 and s["chains"] == 40 and s["workers"] >= 1
+    assert s["b"] == t["b"] and s["b_ci95"] == t["b_ci95"]
+    assert s["mutations"] == t["mutations"] == 40 * 32 * MUTATIONS
+    assert s["rays"] == t["rays"] and s["acceptance_rate"] == t["acceptance_rate"]
+    if method == "mlt":
+        assert s["mutation_types"] == t["mutation_types"]
+    if method == "mmlt":
+        assert s["b_per_depth"] == t["b_per_depth"]
+        assert s["mutations_per_depth"] == t["mutations_per_depth"]
+    # Negative controls: the equality above is not vacuous.
+    other_seed = _mlt(scene, method, seed=10, executor=pool)
+    assert not np.array_equal(np.asarray(other_seed), np.asarray(single))
+    other_spp = _mlt(scene, method, spp=MUTATIONS + 1, executor=pool)
+    assert not np.array_equal(np.asarray(other_spp), np.asarray(single))
+
+
+@pytest.mark.parametrize(
+    ("method", "extra"),
+    [("pssmlt", {"large_step_mis": False}), ("mlt", {"importance": "flattened", "direct_spp": 0})],
+)
+def test_any_split_of_the_chains_gives_the_same_image(
+    scene: dualight.Scene, method: str, extra: dict[str, object]
+) -> None:
+    """Uneven ranges, a single chain, parts pickled: always the single-process image."""
+    _, options = _estimator(
+        method, spp=MUTATIONS, max_depth=6, rr_depth=5, seed=2, threads=2, time_limit=0.0,
+        sampler="independent", heuristic="power", mlt={**MLT_OPTIONS, **extra},
+    )
+    compiled, camera = scene._compile(), scene.camera._compile()  # type: ignore[union-attr]
+    run = _core.render_mlt if method == "mlt" else _core.render_pssmlt
+    single = run(compiled, camera, options)
+    start = pickle.loads(pickle.dumps(_core.start_chains(compiled, camera, options)))
+    assert start.chains == 40 and not start.cancelled
+    cuts = [0, 1, 2, 19, 40]
+    parts = [
+        pickle.loads(
+            pickle.dumps(
+                _core.run_chains(compiled, camera, options, start.for_chains(a, b - a), a, b - a)
+            )
+        )
+        for a, b in zip(cuts[:-1], cuts[1:], strict=True)
+    ]
+    merged = _core.finish_chains(compiled, camera, options, start, parts)
+    assert np.array_equal(single["mean"], merged["mean"])
+    assert merged["stats"]["b"] == single["stats"]["b"]
+    # Negative control: a part left out changes the image (and counts fewer mutations).
+    missing = _core.finish_chains(compiled, camera, options, start, parts[:2] + parts[3:])
+    assert not np.array_equal(single["mean"], missing["mean"])
+    assert missing["stats"]["mutations"] < single["stats"]["mutations"]
+    # Bad input is a clear error.
+    with pytest.raises(ValueError, match="chain order"):
+        _core.finish_chains(compiled, camera, options, start, parts[::-1])
+    with pytest.raises(ValueError, match="not all in the start-up"):
+        _core.run_chains(compiled, camera, options, start, 30, 11)
+    broken = _core.ChainPart.__new__(_core.ChainPart)
+    with pytest.raises(ValueError, match="chain"):
+        broken.__setstate__(pickle.dumps(parts[0])[10:40])
+
+
+def test_ctrl_c_keeps_the_finished_chains(
+    scene: dualight.Scene, pool: ProcessPoolExecutor
+) -> None:
+    target = 40 * 32 * MUTATIONS
+    calls: list[tuple[int, int]] = []
+
+    def interrupt(done: int, total: int) -> None:
+        if total == target and done > 0:  # a task of chains has finished
+            calls.append((done, total))
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt) as info:
+        no_direct = dict(MLT_OPTIONS, direct_spp=0)
+        _mlt(scene, "pssmlt", progress=interrupt, executor=pool, mlt=no_direct)
+    partial = info.value.partial_result  # type: ignore[attr-defined]
+    assert calls and partial.stats["interrupted"]
+    assert 0 < partial.stats["mutations"] < target
+    assert np.all(np.isfinite(np.asarray(partial))) and np.any(np.asarray(partial) > 0)
+
+
+def test_chains_per_task() -> None:
+    assert CHAINS_PER_TASK == 16

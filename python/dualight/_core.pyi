@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'sampler_points', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'sampler_points', 'start_chains', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -398,6 +398,63 @@ class MltOptions:
     @skip_unneeded.setter
     def skip_unneeded(self, arg0: bool) -> None:
         ...
+class ChainStartUp:
+    """
+    What every chain of an MLT render needs: direct light, bootstrap, b, chain starts (picklable).
+    """
+    def __getstate__(self) -> bytes:
+        ...
+    def __setstate__(self, arg0: bytes) -> None:
+        ...
+    def for_chains(self, first_chain: typing.SupportsInt | typing.SupportsIndex, chain_count: typing.SupportsInt | typing.SupportsIndex) -> ChainStartUp:
+        """
+        A copy holding only what chains [first_chain, first_chain + chain_count) need (smaller to send).
+        """
+    @property
+    def b(self) -> float:
+        """
+        The bootstrap's normalisation (sum over populations).
+        """
+    @property
+    def cancelled(self) -> bool:
+        ...
+    @property
+    def chains(self) -> int:
+        """
+        Chains in all populations.
+        """
+    @property
+    def populations(self) -> int:
+        ...
+    @property
+    def seconds(self) -> float:
+        ...
+class ChainPart:
+    """
+    What a range of chains produced (picklable).
+    """
+    def __getstate__(self) -> bytes:
+        ...
+    def __setstate__(self, arg0: bytes) -> None:
+        ...
+    @property
+    def chains(self) -> int:
+        ...
+    @property
+    def first_chain(self) -> int:
+        ...
+    @property
+    def interrupted(self) -> bool:
+        ...
+    @property
+    def mutations(self) -> int:
+        ...
+    @property
+    def rays(self) -> int:
+        ...
+    @property
+    def seconds(self) -> float:
+        ...
 class FormFactorOptions:
     """
     Options of compute_form_factors (keywords only).
@@ -643,6 +700,16 @@ def compute_form_factors(patches: Scene, options: FormFactorOptions, progress: t
     """
     Form factors between the triangles of `patches` (one patch each): (FormFactors, stats). Every row, or with scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only those of non-zero importance for that view (form_factors.h).
     """
+@typing.overload
+def finish_chains(scene: Scene, camera: PinholeCamera, options: PssmltOptions, start: ChainStartUp, parts: collections.abc.Sequence[ChainPart], keyboard_interrupt: bool = False) -> dict:
+    """
+    The render's result dict (as render_mlt / render_pssmlt) from its start-up and chain parts, given in chain order; stats.seconds is the start-up's plus the parts' (the caller knows the wall time).
+    """
+@typing.overload
+def finish_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, start: ChainStartUp, parts: collections.abc.Sequence[ChainPart], keyboard_interrupt: bool = False) -> dict:
+    """
+    The render's result dict (as render_mlt / render_pssmlt) from its start-up and chain parts, given in chain order; stats.seconds is the start-up's plus the parts' (the caller knows the wall time).
+    """
 def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], eta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.float32], numpy.typing.NDArray[numpy.float32]]:
     """
     Unpolarised Fresnel reflectance of a smooth interface with eta = interior / exterior IOR; cos_i < 0 arrives from the interior. Returns (R, |cos_t|, eta_ratio = IOR of the refracted side / incident side).
@@ -675,9 +742,29 @@ def render_pssmlt(scene: Scene, camera: PinholeCamera, options: PssmltOptions, p
     """
     Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); stats has b, b_ci95, mutations and acceptance rates, and when multiplexed b_per_depth, b_per_depth_ci95 and mutations_per_depth (indexed by path length).
     """
+@typing.overload
+def run_chains(scene: Scene, camera: PinholeCamera, options: PssmltOptions, start: ChainStartUp, first_chain: typing.SupportsInt | typing.SupportsIndex, chain_count: typing.SupportsInt | typing.SupportsIndex, progress: typing.Any = None) -> ChainPart:
+    """
+    Chains [first_chain, first_chain + chain_count) of a start-up; its `interrupted` is True after Ctrl-C.
+    """
+@typing.overload
+def run_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, start: ChainStartUp, first_chain: typing.SupportsInt | typing.SupportsIndex, chain_count: typing.SupportsInt | typing.SupportsIndex, progress: typing.Any = None) -> ChainPart:
+    """
+    Chains [first_chain, first_chain + chain_count) of a start-up; its `interrupted` is True after Ctrl-C.
+    """
 def sampler_points(sampler: SamplerType, seed: typing.SupportsInt | typing.SupportsIndex, pixel: typing.SupportsInt | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, dimensions_2d: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
     """
     The 2D samples a sampler gives one pixel: count x dimensions_2d x 2 (for tests and plots).
+    """
+@typing.overload
+def start_chains(scene: Scene, camera: PinholeCamera, options: PssmltOptions, progress: typing.Any = None) -> ChainStartUp:
+    """
+    The start-up of an MLT render (direct light, pilot, bootstrap, chain starts), run once; its `cancelled` is True after Ctrl-C.
+    """
+@typing.overload
+def start_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, progress: typing.Any = None) -> ChainStartUp:
+    """
+    The start-up of an MLT render (direct light, pilot, bootstrap, chain starts), run once; its `cancelled` is True after Ctrl-C.
     """
 def trace_camera_hits(scene: Scene, camera: PinholeCamera, samples_per_axis: typing.SupportsInt | typing.SupportsIndex = 2, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
     """

@@ -9,6 +9,13 @@ Each task here renders exactly one block (``first_sample`` = k x ``BLOCK_SPP``) 
 its own, so its raw accumulators *are* that block's sums; the merge adds them to an empty
 ``_core.Film`` in block order with the same C++ additions, and the mean and variance come from
 the same C++ code. Several blocks per task would not do: their sum would round differently.
+
+The Metropolis methods split by chains instead (``src/pathspace/chain_split.h``): this process
+runs the start-up once (direct light, pilot, bootstrap, which chains start; with all its cores,
+as the workers would idle meanwhile), each task runs a range of chains from a copy of it and
+returns their part, and the parts merge in chain order. A chain's mutations depend only on its
+index, its splats sum exactly (fixed point, ``src/core/exact_sum.h``) and the large steps'
+estimates of b merge in chain order, so any split gives the single-process image bit for bit.
 """
 
 from __future__ import annotations
@@ -25,9 +32,13 @@ import numpy as np
 from dualight.render import _estimator
 from dualight.scene import Camera, Scene
 
-# Methods whose work splits into sample blocks. The MLT methods run chains in rounds whose
-# start-up (bootstrap, direct light) is shared, and are not split yet.
-SPLITTABLE = ("path", "light", "bdpt")
+# Every method splits: the Metropolis methods into ranges of chains, the others into sample blocks.
+CHAIN_SPLIT = ("pssmlt", "mmlt", "mlt")
+
+# Chains per task of a Metropolis render: 16 tasks for the default 256 chains, enough to keep a
+# few workers busy while the stragglers finish, few enough that the start-up sent to each task
+# (the bootstrap, about 0.8 MB per 100,000 samples and path length) stays cheap.
+CHAINS_PER_TASK = 16
 
 # Compiled scenes of the renders this worker process has run tasks for (by render token), so
 # that a worker builds Embree's BVH once per render, not once per task.
@@ -50,6 +61,17 @@ def as_executor(executor: Any) -> concurrent.futures.Executor:
     )
 
 
+def _compiled_scene(token: str, scene: Scene) -> Any:
+    """The scene compiled once per render in this worker process."""
+    compiled = _COMPILED.get(token)
+    if compiled is None:
+        compiled = scene._compile()
+        while len(_COMPILED) >= _COMPILED_KEEP:
+            _COMPILED.pop(next(iter(_COMPILED)))
+        _COMPILED[token] = compiled
+    return compiled
+
+
 def render_block(
     token: str,
     scene: Scene,
@@ -62,12 +84,7 @@ def render_block(
     """One task: sample indices ``[first_sample, first_sample + spp)`` (one block) of the render
     named by ``token``; returns the film's raw accumulators and the core's stats."""
     cpu_start = time.process_time()
-    compiled = _COMPILED.get(token)
-    if compiled is None:
-        compiled = scene._compile()
-        while len(_COMPILED) >= _COMPILED_KEEP:
-            _COMPILED.pop(next(iter(_COMPILED)))
-        _COMPILED[token] = compiled
+    compiled = _compiled_scene(token, scene)
     run, options = _estimator(method, spp=spp, time_limit=0.0, **opts)
     options.first_sample = first_sample
     result = run(compiled, camera._compile(), options, None, accumulators=True)
@@ -171,3 +188,127 @@ def render_split(
         "stats": stats,
         "keyboard_interrupt": interrupted,
     }
+
+
+def render_chains(
+    token: str,
+    scene: Scene,
+    camera: Camera,
+    method: str,
+    opts: dict[str, Any],
+    spp: int,
+    start: Any,
+    first_chain: int,
+    chain_count: int,
+) -> dict[str, Any]:
+    """One task of a Metropolis render: chains ``[first_chain, first_chain + chain_count)`` of
+    the start-up ``start`` (a ``_core.ChainStartUp``); returns their ``_core.ChainPart``."""
+    from dualight import _core
+
+    cpu_start = time.process_time()
+    compiled = _compiled_scene(token, scene)
+    _, options = _estimator(method, spp=spp, time_limit=0.0, **opts)
+    part = _core.run_chains(compiled, camera._compile(), options, start, first_chain, chain_count)
+    return {
+        "part": part,
+        "cpu_seconds": time.process_time() - cpu_start,
+        "worker": os.getpid(),
+    }
+
+
+def render_chain_split(
+    executor: concurrent.futures.Executor,
+    scene: Scene,
+    camera: Camera,
+    method: str,
+    opts: dict[str, Any],
+    spp: int,
+    progress: Callable[[int, int], None] | None,
+    start_threads: int = 0,
+) -> dict[str, Any]:
+    """Renders a Metropolis method (``pssmlt``, ``mmlt``, ``mlt``) with ``spp`` mutations per
+    pixel: the start-up here on ``start_threads`` threads (0: every core), then the chains as
+    tasks of ``CHAINS_PER_TASK`` chains on ``executor``, merged in chain order. Returns a dict
+    like the core's. Ctrl-C during the start-up returns its image (direct light); during the
+    chains it cancels the tasks not started and merges those that finished."""
+    from dualight import _core
+
+    start_time = time.perf_counter()
+    token = uuid.uuid4().hex
+    width, height = camera.resolution
+    compiled_scene, compiled_camera = scene._compile(), camera._compile()
+    _, options = _estimator(method, spp=spp, time_limit=0.0, **{**opts, "threads": start_threads})
+    start = _core.start_chains(compiled_scene, compiled_camera, options, progress)
+    total = start.chains
+    ranges = [
+        (first, min(CHAINS_PER_TASK, total - first))
+        for first in range(0, total, CHAINS_PER_TASK)
+    ]
+    parts: dict[int, Any] = {}
+    stats: dict[str, Any] = dict(task_seconds=0.0, task_cpu_seconds=0.0, workers=set())
+    interrupted = bool(start.cancelled)
+    futures: dict[concurrent.futures.Future[dict[str, Any]], int] = {}
+    target = width * height * spp
+    try:
+        if not interrupted:
+            futures = {
+                executor.submit(
+                    render_chains,
+                    token,
+                    scene,
+                    camera,
+                    method,
+                    opts,
+                    spp,
+                    start.for_chains(first, count),
+                    first,
+                    count,
+                ): first
+                for first, count in ranges
+            }
+        for future in concurrent.futures.as_completed(futures):
+            result = future.result()
+            part = result["part"]
+            parts[futures[future]] = part
+            interrupted = interrupted or part.interrupted
+            stats["task_seconds"] += part.seconds
+            stats["task_cpu_seconds"] += result["cpu_seconds"]
+            stats["workers"].add(result["worker"])
+            if progress is not None:
+                progress(sum(p.mutations for p in parts.values()), target)
+    except KeyboardInterrupt:
+        interrupted = True
+        for future in futures:
+            future.cancel()
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
+
+    result = _core.finish_chains(
+        compiled_scene,
+        compiled_camera,
+        options,
+        start,
+        [parts[first] for first in sorted(parts)],  # chain order
+        interrupted,
+    )
+    seconds = time.perf_counter() - start_time
+    out_stats = dict(result["stats"])
+    out_stats.update(
+        seconds=seconds,
+        samples_per_second=out_stats["samples"] / seconds if seconds > 0 else 0.0,
+        rays_per_second=out_stats["rays"] / seconds if seconds > 0 else 0.0,
+        interrupted=interrupted,
+        time_limited=False,
+        start_up_seconds=start.seconds,
+        tasks=len(ranges),
+        chains=total,
+        workers=len(stats["workers"]),
+        task_seconds=stats["task_seconds"],
+        task_cpu_seconds=stats["task_cpu_seconds"],
+        executor=type(executor).__name__,
+    )
+    result["stats"] = out_stats
+    result["keyboard_interrupt"] = interrupted
+    return result

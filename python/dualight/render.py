@@ -295,16 +295,20 @@ def render(
         features. ``False`` does all the work (to measure what skipping saves); the image's
         expected value is the same.
     executor:
-        ``"path"``, ``"light"`` and ``"bdpt"``: a ``concurrent.futures.Executor`` (e.g.
-        ``ProcessPoolExecutor``, or a Dask client's ``get_executor()``) or a
-        ``distributed.Client`` to render on: the samples are split into one task per block of
+        A ``concurrent.futures.Executor`` (e.g. ``ProcessPoolExecutor``, or a Dask client's
+        ``get_executor()``) or a ``distributed.Client`` to render on. ``"path"``,
+        ``"light"`` and ``"bdpt"``: the samples are split into one task per block of
         ``dualight._core.BLOCK_SPP`` (16) samples per pixel (particles per pixel for
-        ``"light"``), and the blocks merged in order, so the image equals the single-process
-        image with the same seed and ``spp`` bit for bit (mean and variance). Each task uses
-        ``threads`` threads (default 1: the executor's workers give the parallelism) and gets
-        the scene description pickled; workers need the same dualight version. Needs ``spp``
-        (no ``time_limit``); ``progress`` advances per finished task; ``stats`` adds
-        ``tasks``, ``workers``, ``task_seconds`` and ``task_cpu_seconds``.
+        ``"light"``), and the blocks merged in order. ``"pssmlt"``, ``"mmlt"`` and
+        ``"mlt"``: the start-up (direct light, bootstrap, chain starts) runs here on
+        ``threads`` threads (default: every core), then the chains run as tasks of 16 chains
+        and their parts merge in chain order. Either way the image equals the single-process
+        image with the same seed and ``spp`` bit for bit (mean and variance; ``b`` too). Each
+        task uses ``threads`` threads (default 1: the executor's workers give the
+        parallelism) and gets the scene description pickled; workers need the same dualight
+        version. Needs ``spp`` (no ``time_limit``); ``progress`` advances per finished task;
+        ``stats`` adds ``tasks``, ``workers``, ``task_seconds`` and ``task_cpu_seconds``
+        (and ``chains`` and ``start_up_seconds`` for the Metropolis methods).
 
     Returns
     -------
@@ -368,13 +372,14 @@ def render(
     if not isinstance(skip, bool):
         raise TypeError(f"skip must be True or False, got {skip!r}")
     if executor is not None:
-        from dualight.executor import SPLITTABLE, as_executor
+        from dualight.executor import as_executor
 
         executor = as_executor(executor)
-        if method not in SPLITTABLE:
-            raise ValueError(f"executor= is not supported for method {method!r} yet")
-        if time_limit is not None:
-            raise ValueError("executor= needs spp and no time_limit (tasks are blocks of samples)")
+        if time_limit is not None or spp is None:
+            raise ValueError(
+                "executor= needs spp (mutations_per_pixel) and no time_limit: tasks are blocks "
+                "of samples or ranges of chains, fixed before they run"
+            )
         if strategy_images:
             raise ValueError("strategy_images is not supported with executor= yet")
     scene.validate_for_rendering(camera)
@@ -408,7 +413,7 @@ def render(
         raise TypeError("progress must be True, False or a callable(done, total)")
     try:
         if executor is not None:
-            from dualight.executor import render_split
+            from dualight.executor import CHAIN_SPLIT, render_chain_split, render_split
 
             task_options = dict(
                 max_depth=max_depth,
@@ -420,7 +425,13 @@ def render(
                 skip=skip,
             )
             assert spp is not None
-            result = render_split(executor, scene, cam, method, task_options, spp, callback)
+            if method in CHAIN_SPLIT:
+                task_options["mlt"] = mlt
+                result = render_chain_split(
+                    executor, scene, cam, method, task_options, spp, callback, threads or 0
+                )
+            else:
+                result = render_split(executor, scene, cam, method, task_options, spp, callback)
         else:
             result = run(scene._compile(), cam._compile(), options, callback)
     finally:

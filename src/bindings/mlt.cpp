@@ -15,19 +15,6 @@ namespace dualight::bindings {
 
 namespace {
 
-py::dict mutation_stats_dict(const std::vector<MutationStats>& mutations) {
-  py::dict per_mutation;
-  for (const MutationStats& ms : mutations) {
-    py::dict e;
-    e["proposed"] = ms.proposed;
-    e["accepted"] = ms.accepted;
-    e["failed"] = ms.failed;
-    e["acceptance_rate"] = ms.proposed > 0 ? static_cast<double>(ms.accepted) / ms.proposed : 0.0;
-    per_mutation[ms.name.c_str()] = e;
-  }
-  return per_mutation;
-}
-
 TransitionRatio transition_ratio_of(const std::string& name) {
   if (name == "used") return TransitionRatio::Used;
   if (name == "ignored") return TransitionRatio::Ignored;
@@ -101,14 +88,7 @@ void bind_mlt(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_mlt(*scene, camera, options, control); }, control,
                                      progress);
-        const std::vector<MutationStats>& mutations = run.result.mutations;  // not moved below
-        py::dict d = mlt_result_dict(std::move(run.result.result), camera.width(), camera.height(),
-                                     options.direct_spp, run.keyboard_interrupt);
-        py::dict stats = d["stats"];
-        stats["mutation_types"] = mutation_stats_dict(mutations);
-        stats["skipped_mutations"] = run.result.skipped_mutations;
-        stats["importance"] = options.importance == MltImportance::Flattened ? "flattened" : "luminance";
-        return d;
+        return path_mlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Path-space MLT (Veach); returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); "

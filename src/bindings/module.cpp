@@ -9,6 +9,7 @@ void bind_materials(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
 void bind_mlt(py::module_& m);
+void bind_chain_split(py::module_& m);
 void bind_radiosity(py::module_& m);
 }  // namespace dualight::bindings
 
@@ -19,5 +20,6 @@ PYBIND11_MODULE(_core, m) {
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
   dualight::bindings::bind_mlt(m);
+  dualight::bindings::bind_chain_split(m);
   dualight::bindings::bind_radiosity(m);
 }

@@ -178,22 +178,7 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
                                      progress);
-        const MltStats s = run.result.mlt;
-        py::dict d = mlt_result_dict(std::move(run.result), camera.width(), camera.height(), options.direct_spp,
-                                     run.keyboard_interrupt);
-        py::dict stats = d["stats"];
-        stats["b_per_depth"] = s.b_per_depth;
-        stats["b_per_depth_ci95"] = s.b_per_depth_ci95;
-        stats["mutations_per_depth"] = s.mutations_per_depth;
-        stats["large_step_mis"] = options.large_step_mis;
-        stats["large_steps"] = s.large_steps;
-        stats["large_step_acceptance_rate"] =
-            s.large_steps > 0 ? static_cast<double>(s.large_steps_accepted) / s.large_steps : 0.0;
-        stats["small_step_acceptance_rate"] =
-            s.mutations > s.large_steps
-                ? static_cast<double>(s.accepted - s.large_steps_accepted) / (s.mutations - s.large_steps)
-                : 0.0;
-        return d;
+        return pssmlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, light_paths (= mutations), stats, "

@@ -7,7 +7,10 @@
 #include "bindings/numpy_util.h"
 #include <pybind11/stl.h>
 
+#include "geometry/camera.h"
+#include "pathspace/mlt.h"
 #include "pathspace/mlt_result.h"
+#include "pathspace/pssmlt.h"
 #include "pathspace/render_stats.h"
 #include "geometry/scene.h"
 
@@ -106,6 +109,54 @@ inline py::dict mlt_result_dict(MltResult&& r, int width, int height, uint32_t d
   stats["skipped_connections"] = r.stats.skipped_connections + r.direct.skipped_connections;
   stats["skipped_shadow_rays"] = r.stats.skipped_shadow_rays + r.direct.skipped_shadow_rays;
   d["stats"] = stats;
+  return d;
+}
+
+// PSSMLT's and MMLT's result: mlt_result_dict plus large-step rates and, multiplexed, b by path
+// length.
+inline py::dict pssmlt_result_dict(MltResult&& r, const PinholeCamera& camera, const PssmltOptions& options,
+                                   bool keyboard_interrupt) {
+  const MltStats s = r.mlt;
+  py::dict d = mlt_result_dict(std::move(r), camera.width(), camera.height(), options.direct_spp,
+                               keyboard_interrupt);
+  py::dict stats = d["stats"];
+  stats["b_per_depth"] = s.b_per_depth;
+  stats["b_per_depth_ci95"] = s.b_per_depth_ci95;
+  stats["mutations_per_depth"] = s.mutations_per_depth;
+  stats["large_step_mis"] = options.large_step_mis;
+  stats["large_steps"] = s.large_steps;
+  stats["large_step_acceptance_rate"] =
+      s.large_steps > 0 ? static_cast<double>(s.large_steps_accepted) / s.large_steps : 0.0;
+  stats["small_step_acceptance_rate"] =
+      s.mutations > s.large_steps
+          ? static_cast<double>(s.accepted - s.large_steps_accepted) / (s.mutations - s.large_steps)
+          : 0.0;
+  return d;
+}
+
+inline py::dict mutation_stats_dict(const std::vector<MutationStats>& mutations) {
+  py::dict per_mutation;
+  for (const MutationStats& ms : mutations) {
+    py::dict e;
+    e["proposed"] = ms.proposed;
+    e["accepted"] = ms.accepted;
+    e["failed"] = ms.failed;
+    e["acceptance_rate"] = ms.proposed > 0 ? static_cast<double>(ms.accepted) / ms.proposed : 0.0;
+    per_mutation[ms.name.c_str()] = e;
+  }
+  return per_mutation;
+}
+
+// Path-space MLT's result: mlt_result_dict plus counts per mutation type.
+inline py::dict path_mlt_result_dict(PathMltResult&& r, const PinholeCamera& camera, const MltOptions& options,
+                                     bool keyboard_interrupt) {
+  const std::vector<MutationStats> mutations = r.mutations;
+  py::dict d = mlt_result_dict(std::move(r.result), camera.width(), camera.height(), options.direct_spp,
+                               keyboard_interrupt);
+  py::dict stats = d["stats"];
+  stats["mutation_types"] = mutation_stats_dict(mutations);
+  stats["skipped_mutations"] = r.skipped_mutations;
+  stats["importance"] = options.importance == MltImportance::Flattened ? "flattened" : "luminance";
   return d;
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <stdexcept>
 #include <cmath>
 #include <atomic>
 #include <memory>
@@ -13,6 +15,7 @@
 #include "core/sampler.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
+#include "pathspace/chain_split.h"
 #include "pathspace/direct_light.h"
 #include "pathspace/mutations/bidirectional.h"
 #include "pathspace/mutations/caustic_perturbation.h"
@@ -103,11 +106,11 @@ double weight_of(const Color& c, float mis) {
   return std::isfinite(w) ? w : 0.0;
 }
 
-// The importance factor of each pixel for MltImportance::Flattened: the direct light plus a pilot
-// estimate of the chains' part from `count` BDPT samples of their own stream (independent of
+// The per-pixel luminance MltImportance::Flattened divides by (importance_of): the direct light
+// plus a pilot estimate of the chains' part from `count` BDPT samples of their own stream (independent of
 // the bootstrap, so that b stays unbiased), merged in block order (deterministic).
 template <class Elapsed>
-PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt,
+std::vector<double> pilot_luminance(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt,
                                  const MltOptions& opt, const std::vector<double>& direct, size_t wanted,
                                  double seconds, const Elapsed& elapsed, const RenderControl& control,
                                  SharedTraceCounters& rays, size_t& count) {
@@ -141,9 +144,14 @@ PixelImportance pixel_importance(const Scene& scene, const PinholeCamera& camera
   for (const auto& block : blocks) {
     for (const auto& [pixel, w] : block) lum[pixel] += w * inv;
   }
+  return lum;
+}
+
+PixelImportance importance_of(const ChainStartUp& start, const PinholeCamera& camera) {
+  if (start.pilot_luminance.empty()) return {};
   // A 5x5 box (radius 2) smooths the pilot's noise (about bootstrap / 4 / pixels samples each);
   // the floor of 1 % of the mean keeps pixels the pilot missed reachable at finite cost.
-  return PixelImportance(lum, camera.width(), camera.height(), 2, 0.01);
+  return PixelImportance(start.pilot_luminance, camera.width(), camera.height(), 2, 0.01);
 }
 
 // The mutations and their selection weights; a path picks among those that suit it.
@@ -224,45 +232,65 @@ struct Chain {
   State current;
 };
 
+// Chain `id`'s start: a bootstrap sample in proportion to its weight, then one of its
+// strategies in proportion to theirs (at most 16 tries); its target is 0 if none was found.
+Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt, const MltOptions& opt,
+                  const PixelImportance& importance, const ChainPopulation& population,
+                  const DiscreteDistribution& pick, uint32_t id, Subpaths& paths, TraceCounters& counters) {
+  const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
+  Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), id), {}};
+  for (int attempt = 0; attempt < 16 && chain.current.target <= 0.0; ++attempt) {
+    float u_pick = chain.rng.next_float();
+    const size_t i = pick.sample(u_pick);
+    double target_w = chain.rng.next_float() * population.weights[i];
+    bool chosen = false;
+    bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
+                     [&](int s, int t, const Color& col, float mis, const Vertex& sampled, const Point2& raster) {
+                       const double w = weight_of(col, mis) * importance(pixel_of(camera, raster));
+                       if (chosen || w <= 0.0) return;
+                       if (target_w < w) {
+                         chain.current.path = strategy_path(paths, sampled, s, t);
+                         chosen = true;
+                       }
+                       target_w -= w;
+                     });
+    if (chosen) evaluate(camera, importance, chain.current);
+  }
+  return chain;
+}
+
 }  // namespace
 
-PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
-                         RenderControl& control) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  const auto elapsed = [start] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+                          RenderControl& control, const std::function<double()>& elapsed) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
-  PathMltResult out;
-  MltResult& result = out.result;
-  MltStats& mlt = result.mlt;
-  std::vector<double> image(3 * pixels, 0.0);      // direct light, then the chains' estimate
-  std::vector<double> chain_sum(3 * pixels, 0.0);  // the chains' splats, over all mutations
-  const MutationSet mutations(opt, camera, scene.features());
-  for (size_t i = 0; i < mutations.size(); ++i) out.mutations.push_back({mutations[i].name(), 0, 0, 0});
-  out.skipped_mutations = mutations.skipped();
+  ChainStartUp start;
+  MltStats& mlt = start.mlt;
+  start.image.assign(3 * pixels, 0.0);
   SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
   if (opt.direct_spp > 0) {
     const RenderResult direct = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control,
                                                     kDirectShare * opt.time_limit);
     const std::vector<float> mean = direct.film.mean();
-    std::copy(mean.begin(), mean.end(), image.begin());
-    result.direct = direct.stats;
+    std::copy(mean.begin(), mean.end(), start.image.begin());
+    start.direct = direct.stats;
   }
   const bool direct_only = opt.direct_spp > 0 && opt.max_depth >= 0 && opt.max_depth <= 2;
   const BdptOptions bdpt = bootstrap_bdpt(opt);
   const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
   const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
-  std::vector<Chain> chains;
-  uint64_t total = 0;
-  PixelImportance importance;
   if (!direct_only && opt.importance == MltImportance::Flattened && !control.cancelled()) {
-    importance = pixel_importance(scene, camera, bdpt, opt, opt.direct_spp > 0 ? image : std::vector<double>{},
-                                  std::max<size_t>(n_boot / 4, 1), kPilotShare * opt.time_limit, elapsed, control,
-                                  rays, mlt.pilot_samples);
+    start.pilot_luminance =
+        pilot_luminance(scene, camera, bdpt, opt, opt.direct_spp > 0 ? start.image : std::vector<double>{},
+                        std::max<size_t>(n_boot / 4, 1), kPilotShare * opt.time_limit, elapsed, control, rays,
+                        mlt.pilot_samples);
   }
+  const PixelImportance importance = importance_of(start, camera);
   if (!direct_only && !control.cancelled()) {
     // Bootstrap: each sample's total weight (the sum over its strategies estimates b).
-    std::vector<double> weight(n_boot, 0.0);
+    ChainPopulation population;
+    std::vector<double>& weight = population.weights;
+    weight.assign(n_boot, 0.0);
     const auto bootstrap_block = [&](size_t, size_t begin, size_t end) {
       Subpaths paths;
       TraceCounters counters = rays.local();
@@ -279,120 +307,173 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
                                             kBootstrapShare * opt.time_limit, elapsed, control, bootstrap_block);
     weight.resize(n_done);
     const MeanEstimate b = estimate_of(weight);
-    mlt.b = mlt.b_splatted = b.mean();
+    mlt.b = mlt.b_splatted = population.b_splat = b.mean();
     mlt.b_ci95 = 1.96 * std::sqrt(b.variance_of_mean());
     mlt.independent_samples = b.n;
-
-    const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
     if (mlt.b > 0.0 && !control.cancelled()) {
-      // Start states: a bootstrap sample in proportion to its weight, then one of its strategies.
+      // A chain without a start path would count mutations that splat nothing and darken the
+      // image: only the chains that find one run, and they share the mutations.
       const DiscreteDistribution pick(weight);
       Subpaths paths;
       TraceCounters counters = rays.local();
-      for (size_t c = 0; c < n_chains; ++c) {
-        Chain chain{Pcg32(hash_combine(opt.seed, kChainStream), c), {}};
-        for (int attempt = 0; attempt < 16 && chain.current.target <= 0.0; ++attempt) {
-          float u_pick = chain.rng.next_float();
-          const size_t i = pick.sample(u_pick);
-          double target_w = chain.rng.next_float() * weight[i];
-          bool chosen = false;
-          bootstrap_sample(scene, camera, bdpt, boot_seed, i, paths, counters,
-                           [&](int s, int t, const Color& col, float mis, const Vertex& sampled,
-                               const Point2& raster) {
-                             const double w = weight_of(col, mis) * importance(pixel_of(camera, raster));
-                             if (chosen || w <= 0.0) return;
-                             if (target_w < w) {
-                               chain.current.path = strategy_path(paths, sampled, s, t);
-                               chosen = true;
-                             }
-                             target_w -= w;
-                           });
-          if (chosen) evaluate(camera, importance, chain.current);
+      for (uint32_t id = 0; id < std::max<uint32_t>(opt.chains, 1); ++id) {
+        if (start_chain(scene, camera, bdpt, opt, importance, population, pick, id, paths, counters).current.target >
+            0.0) {
+          population.chain_ids.push_back(id);
         }
-        // A chain without a start path would count mutations that splat nothing and darken
-        // the image; the others share its mutations.
-        if (chain.current.target > 0.0) chains.push_back(std::move(chain));
       }
       rays.add(counters);
+      population.chains = population.chain_ids.size();
+      population.target = pixels * opt.spp;  // 0: until the time limit
     }
+    start.populations.push_back(std::move(population));
+  }
+  start.cancelled = control.cancelled();
+  rays.into(start.stats);
+  start.stats.seconds = elapsed();
+  return start;
+}
 
-    // Rounds: each chain mutates its share; splats merge in chain order.
-    const uint64_t target = pixels * opt.spp;  // 0: until the time limit
-    control.total.store(target);
-    const float scale = static_cast<float>(mlt.b_splatted);
-    std::vector<SplatList> splat_lists(chains.size());
-    std::vector<std::vector<MutationStats>> counts(chains.size(), out.mutations);
-    std::vector<uint64_t> done(chains.size(), 0);
-    ChainRounds rounds(chains.size(), target, opt.time_limit);
-    while (!chains.empty() && rounds.next(elapsed(), control)) {
-      parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
-        const uint64_t share = rounds.share(c);
-        Chain& chain = chains[c];
-        TraceCounters counters = rays.local();
-        const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
-        SplatList& splats = splat_lists[c];
-        splats.clear();
-        done[c] = 0;
-        State proposed;
-        for (uint64_t m = 0; m < share; ++m) {
-          if ((m & 63u) == 0 && control.cancelled()) break;
-          ++done[c];
-          State& x = chain.current;
-          double select_x = 0.0;
-          const size_t k = mutations.select(x.path, chain.rng, select_x);
-          if (k == mutations.size()) {
-            // No enabled mutation suits x (only when bidirectional is off, in tests): staying
-            // put is a kernel that keeps f invariant too.
-            splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
-            continue;
-          }
-          MutationStats& stat = counts[c][k];
-          ++stat.proposed;
-          Transition t;
-          float a = 0.f;
-          if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
-              evaluate(camera, importance, proposed) && t.forward > 0.0) {
-            const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-            const double t_ratio = transition_ratio(opt.transition_ratio, t);
-            const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
-            a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
-          } else {
-            ++stat.failed;
-          }
-          // Expected values: each state's f / f* times b, weighted by its acceptance odds (f.color
-          // is f / f_lum; f* = f_lum times the pixel's factor).
-          if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a / importance(proposed.pixel)));
-          if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a) / importance(x.pixel)));
-          if (a > 0.f && chain.rng.next_float() < a) {
-            std::swap(x, proposed);
-            ++stat.accepted;
-          }
-        }
-        rays.add(counters);
-        control.done.fetch_add(done[c], std::memory_order_relaxed);
-      });
-      // In chain order, so that the sums do not depend on the schedule.
-      uint64_t round = 0;
-      for (size_t c = 0; c < chains.size(); ++c) {
-        for (const Splat& sp : splat_lists[c].splats()) {
-          for (int ch = 0; ch < 3; ++ch) chain_sum[3 * sp.pixel + ch] += sp.value[ch];
-        }
-        round += done[c];
-      }
-      if (!rounds.finish(round, elapsed(), control)) break;
+ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+                     const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
+                     const std::function<double()>& elapsed) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  ChainPart part;
+  first = std::min(first, start.chains());
+  part.first_chain = first;
+  part.chains = std::min(count, start.chains() - first);
+  part.populations.resize(start.populations.size());
+  const MutationSet mutations(opt, camera, scene.features());
+  for (size_t i = 0; i < mutations.size(); ++i) part.mutations.push_back({mutations[i].name(), 0, 0, 0});
+  SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
+  if (part.chains == 0) {
+    rays.into(part.stats);
+    return part;
+  }
+  const ChainPopulation& population = start.populations.front();  // the only one
+  if (population.weights.empty()) throw std::invalid_argument("the chain start-up holds no bootstrap for these chains");
+  PopulationPart& pop = part.populations.front();
+  const BdptOptions bdpt = bootstrap_bdpt(opt);
+  const PixelImportance importance = importance_of(start, camera);
+  std::vector<Chain> chains;
+  {
+    const DiscreteDistribution pick(population.weights);
+    Subpaths paths;
+    TraceCounters counters = rays.local();
+    for (uint64_t c = first; c < first + part.chains; ++c) {
+      chains.push_back(start_chain(scene, camera, bdpt, opt, importance, population, pick,
+                                   population.chain_ids[c], paths, counters));
     }
-    total = rounds.total();
-    result.stats.time_limited = rounds.time_limited();
-    for (const auto& chain_counts : counts) {
-      for (size_t i = 0; i < chain_counts.size(); ++i) {
-        out.mutations[i].proposed += chain_counts[i].proposed;
-        out.mutations[i].accepted += chain_counts[i].accepted;
-        out.mutations[i].failed += chain_counts[i].failed;
+    rays.add(counters);
+  }
+
+  // Rounds: each chain mutates its share; splats merge into exact sums.
+  ChainRounds rounds(population.chains, first, chains.size(), population.target, opt.time_limit);
+  control.total.store(rounds.range_target());
+  pop.metropolis = ExactSums(3 * pixels, population.b_splat);
+  const float scale = static_cast<float>(population.b_splat);
+  std::vector<SplatList> splat_lists(chains.size());
+  std::vector<std::vector<MutationStats>> counts(chains.size(), part.mutations);
+  std::vector<uint64_t> done(chains.size(), 0);
+  uint64_t rejected = 0;  // splats too large for the exact sums
+  while (rounds.next(elapsed(), control)) {
+    parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
+      const uint64_t share = rounds.share(c);
+      Chain& chain = chains[c];
+      TraceCounters counters = rays.local();
+      const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
+      SplatList& splats = splat_lists[c];
+      splats.clear();
+      done[c] = 0;
+      State proposed;
+      for (uint64_t m = 0; m < share; ++m) {
+        if ((m & 63u) == 0 && control.cancelled()) break;
+        ++done[c];
+        State& x = chain.current;
+        double select_x = 0.0;
+        const size_t k = mutations.select(x.path, chain.rng, select_x);
+        if (k == mutations.size()) {
+          // No enabled mutation suits x (only when bidirectional is off, in tests): staying
+          // put is a kernel that keeps f invariant too.
+          splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
+          continue;
+        }
+        MutationStats& stat = counts[c][k];
+        ++stat.proposed;
+        Transition t;
+        float a = 0.f;
+        if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
+            evaluate(camera, importance, proposed) && t.forward > 0.0) {
+          const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
+          const double t_ratio = transition_ratio(opt.transition_ratio, t);
+          const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
+          a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
+        } else {
+          ++stat.failed;
+        }
+        // Expected values: each state's f / f* times b, weighted by its acceptance odds (f.color
+        // is f / f_lum; f* = f_lum times the pixel's factor).
+        if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a / importance(proposed.pixel)));
+        if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a) / importance(x.pixel)));
+        if (a > 0.f && chain.rng.next_float() < a) {
+          std::swap(x, proposed);
+          ++stat.accepted;
+        }
       }
+      rays.add(counters);
+      control.done.fetch_add(done[c], std::memory_order_relaxed);
+    });
+    uint64_t round = 0;
+    for (size_t c = 0; c < chains.size(); ++c) {
+      for (const Splat& sp : splat_lists[c].splats()) {
+        for (int ch = 0; ch < 3; ++ch) rejected += !pop.metropolis.add(3 * sp.pixel + ch, sp.value[ch]);
+      }
+      rejected += splat_lists[c].invalid();
+      round += done[c];
+    }
+    if (!rounds.finish(round, elapsed(), control)) break;
+  }
+  pop.mutations = rounds.total();
+  for (const auto& chain_counts : counts) {
+    for (size_t i = 0; i < chain_counts.size(); ++i) {
+      part.mutations[i].proposed += chain_counts[i].proposed;
+      part.mutations[i].accepted += chain_counts[i].accepted;
+      part.mutations[i].failed += chain_counts[i].failed;
     }
   }
+  for (const MutationStats& s : part.mutations) {
+    pop.accepted += s.accepted;
+    pop.zero_proposals += s.failed;
+  }
+  RenderStats& stats = part.stats;
+  rays.into(stats);
+  stats.invalid_samples = rejected;
+  stats.samples = pop.mutations;
+  stats.time_limited = rounds.time_limited();
+  stats.interrupted = control.cancelled();
+  return part;
+}
+
+PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const ChainPart& part,
+                         const MltOptions& opt, const PinholeCamera& camera) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_part(start, part, 3 * pixels);
+  PathMltResult out;
+  MltResult& result = out.result;
+  result.direct = start.direct;
+  MltStats& mlt = result.mlt;
+  mlt = start.mlt;
+  std::vector<double> image = start.image;
+  const MutationSet mutations(opt, camera, scene.features());
+  out.skipped_mutations = mutations.skipped();
+  out.mutations = part.mutations;
+  if (out.mutations.empty()) {
+    for (size_t i = 0; i < mutations.size(); ++i) out.mutations.push_back({mutations[i].name(), 0, 0, 0});
+  }
+  const uint64_t total = part.populations.empty() ? 0 : part.populations.front().mutations;
   if (total > 0) {
-    for (size_t i = 0; i < image.size(); ++i) image[i] += chain_sum[i] / static_cast<double>(total);
+    const ExactSums& chain_sum = part.populations.front().metropolis;
+    for (size_t i = 0; i < image.size(); ++i) image[i] += chain_sum.value(i) / static_cast<double>(total);
   }
   result.image.assign(image.begin(), image.end());
   mlt.mutations = total;
@@ -400,12 +481,21 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
     mlt.accepted += s.accepted;
     mlt.zero_proposals += s.failed;
   }
-  RenderStats& stats = result.stats;
-  stats.seconds = elapsed();
-  rays.into(stats);
-  stats.samples = total;
-  stats.spp = static_cast<uint32_t>(total / pixels);
-  stats.interrupted = control.cancelled();
+  result.stats = chain_render_stats(start, part, total, pixels);
+  return out;
+}
+
+PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+                         RenderControl& control) {
+  using Clock = std::chrono::steady_clock;
+  const auto start_time = Clock::now();
+  const std::function<double()> elapsed = [start_time] {
+    return std::chrono::duration<double>(Clock::now() - start_time).count();
+  };
+  const ChainStartUp start = mlt_start_up(scene, camera, opt, control, elapsed);
+  const ChainPart part = mlt_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed);
+  PathMltResult out = mlt_finish(scene, start, part, opt, camera);
+  out.result.stats.seconds = elapsed();
   return out;
 }
 

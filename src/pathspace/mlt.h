@@ -13,9 +13,11 @@
 // through a gap, caustics seen directly or through glass.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "pathspace/chain_split.h"
 #include "pathspace/estimator_options.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/mlt_importance.h"
@@ -52,12 +54,6 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   TransitionRatio transition_ratio = TransitionRatio::Used;
 };
 
-struct MutationStats {
-  std::string name;
-  uint64_t proposed = 0;  // chosen for a path
-  uint64_t accepted = 0;
-  uint64_t failed = 0;    // no valid proposal (missed ray, blocked connection, f = 0)
-};
 
 struct PathMltResult {
   MltResult result;  // b is the bootstrap's (MLT has no large steps to refine it)
@@ -67,6 +63,16 @@ struct PathMltResult {
 
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
                          RenderControl& control);
+
+// render_mlt in the three parts of chain_split.h, for renders split into tasks; as
+// pssmlt_start_up, pssmlt_chains and pssmlt_finish.
+ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
+                          RenderControl& control, const std::function<double()>& elapsed);
+ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
+                     const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
+                     const std::function<double()>& elapsed);
+PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const ChainPart& part,
+                         const MltOptions& options, const PinholeCamera& camera);
 
 }  // namespace dualight
 

@@ -2,6 +2,7 @@
 // the direct light rendered apart), its work, and the normalisation b with its interval.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "pathspace/render_stats.h"
@@ -22,6 +23,13 @@ struct MltStats {
   uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0;
   uint64_t zero_proposals = 0;  // proposals with f = 0 (rejected)
   uint64_t pilot_samples = 0;   // path-space MLT with flattened importance: the pilot's BDPT samples
+};
+
+struct MutationStats {
+  std::string name;
+  uint64_t proposed = 0;  // chosen for a path
+  uint64_t accepted = 0;
+  uint64_t failed = 0;    // no valid proposal (missed ray, blocked connection, f = 0)
 };
 
 struct MltResult {

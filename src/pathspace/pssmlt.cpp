@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "core/distribution.h"
@@ -15,6 +16,7 @@
 #include "core/primary_sample_sampler.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
+#include "pathspace/chain_split.h"
 #include "pathspace/direct_light.h"
 #include "pathspace/start_up.h"
 
@@ -157,18 +159,18 @@ std::vector<double> bootstrap(const MakeEvaluator& make, const PssmltOptions& op
 // Splat layers of the chains: the Metropolis part and the large steps' own part (see run_chains).
 constexpr uint32_t kMetropolisLayer = 0, kLargeStepLayer = 1;
 
-struct Population {
-  uint64_t mutations = 0, accepted = 0, large_steps = 0, large_steps_accepted = 0, zero_proposals = 0;
-  MeanEstimate large_f;  // f of the large steps' proposals (independent samples)
-  bool time_limited = false;
-  // Per pixel and channel, the sums of the splats of each layer.
-  std::vector<double> metropolis, large;
-};
+uint64_t bootstrap_seed(const PssmltOptions& opt, int depth) {
+  return hash_combine(opt.seed, kBootstrapStream + static_cast<uint64_t>(depth));
+}
+uint64_t chain_seed(const PssmltOptions& opt, int depth) {
+  return hash_combine(opt.seed, kChainStream + static_cast<uint64_t>(depth));
+}
 
-// Chains started from bootstrap samples chosen in proportion to f (no start-up bias), mutated
-// in rounds until `target` mutations (0: none) or the `deadline` (seconds of `elapsed`; 0:
-// none), after a first round of 4 mutations per chain. The estimate of M mutations, with h a
-// state's contribution to the film and f its luminance, x the current state, y the proposal:
+// Chains [lo, hi) of a population, started from bootstrap samples chosen in proportion to f (no
+// start-up bias), mutated in rounds until their quotas of the population's target (0: none) or
+// the `deadline` (seconds of `elapsed`; 0: none), after a first round of 4 mutations per chain.
+// The estimate of M mutations, with h a state's contribution to the film and f its luminance, x
+// the current state, y the proposal:
 //  * plain (Veach's expected values): y with weight a, x with 1 - a, each splatting h / f
 //    times b* / M. In the stationary chain these are samples of density f / b*, b* = E[f], M of
 //    them; b* is known only by its estimate, so they splat with the bootstrap's b_splat and
@@ -183,40 +185,44 @@ struct Population {
 //    final b like the plain estimate. So y splats (a + L) h / (f / b + p) (a in the Metropolis
 //    layer; L = 1 for a large step, in the large-step layer) and x (1 - a) h / (f / b + p);
 //    with p = 0 this is the plain estimate.
+// Returns whether the deadline stopped them.
 template <class MakeEvaluator>
-Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const std::vector<double>& f_boot,
-                      uint64_t boot_seed, uint64_t chain_seed, size_t n_chains, uint64_t target, double deadline,
-                      double b_splat, size_t pixels, const std::function<double()>& elapsed, RenderControl& control,
-                      SharedTraceCounters& rays, std::atomic<uint64_t>& invalid) {
-  Population pop;
-  pop.metropolis.assign(3 * pixels, 0.0);
-  if (opt.large_step_mis) pop.large.assign(3 * pixels, 0.0);
-  const DiscreteDistribution pick(f_boot);
+bool run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const ChainPopulation& population, uint64_t lo,
+                uint64_t hi, double deadline, size_t pixels, const std::function<double()>& elapsed,
+                RenderControl& control, SharedTraceCounters& rays, std::atomic<uint64_t>& invalid,
+                PopulationPart& pop) {
+  const size_t n_chains = hi - lo;
+  pop.metropolis = ExactSums(3 * pixels, population.b_splat);
+  if (opt.large_step_mis) pop.large = ExactSums(3 * pixels, population.b_splat);
+  const uint64_t boot_seed = bootstrap_seed(opt, population.depth);
+  const uint64_t seed = chain_seed(opt, population.depth);
+  const DiscreteDistribution pick(population.weights);
   std::vector<Chain> chains;
   chains.reserve(n_chains);
   {
     auto evaluate = make();
     TraceCounters counters = rays.local();
-    for (size_t c = 0; c < n_chains; ++c) {
-      Pcg32 rng(chain_seed, c);
+    for (uint64_t c = lo; c < hi; ++c) {
+      Pcg32 rng(seed, c);
       float u = rng.next_float();
       const size_t i = pick.sample(u);
       Chain chain{PrimarySampleSampler(boot_seed, i, opt.sigma, opt.large_step_probability), rng, {}};
       chain.sampler.start_large_step();
       evaluate(chain.sampler, chain.current, counters);
       chain.sampler.accept();
-      chain.sampler.reseed(hash_combine(chain_seed, 1), c);
+      chain.sampler.reseed(hash_combine(seed, 1), c);
       chains.push_back(std::move(chain));
     }
     rays.add(counters);
   }
-  const float b = static_cast<float>(b_splat), p_large = opt.large_step_probability;
+  const float b = static_cast<float>(population.b_splat), p_large = opt.large_step_probability;
   // What a state's h is multiplied by, before its weight a, 1 - a or L (see above).
   const auto per_h = [&](float f) { return opt.large_step_mis ? 1.f / (f / b + p_large) : b / f; };
   std::vector<SplatList> out(n_chains);
-  std::vector<MeanEstimate> large_f(n_chains);
+  pop.large_f.assign(n_chains, MeanEstimate{});
   std::vector<uint64_t> done(n_chains, 0), accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
-  ChainRounds rounds(n_chains, target, deadline);
+  ChainRounds rounds(population.chains, lo, n_chains, population.target, deadline);
+  uint64_t rejected = 0;  // splats too large for the exact sums
   while (rounds.next(elapsed(), control)) {
     parallel_for_each_index(opt.threads, n_chains, [&](size_t c) {
       const uint64_t share = rounds.share(c);
@@ -246,7 +252,7 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
           const float k = (1.f - a) * per_h(chain.current.f);
           for (const Splat& sp : chain.current.splats) splats.add(sp.pixel, sp.value * k, kMetropolisLayer);
         }
-        if (large_step) large_f[c].add(proposed.f);
+        if (large_step) pop.large_f[c].add(proposed.f);
         if (proposed.f > 0.f && chain.rng.next_float() < a) {
           std::swap(chain.current, proposed);
           chain.sampler.accept();
@@ -261,40 +267,38 @@ Population run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const
       invalid.fetch_add(evaluate.invalid() + splats.invalid(), std::memory_order_relaxed);
       control.done.fetch_add(done[c], std::memory_order_relaxed);
     });
-    // In chain order, so that the sums do not depend on the schedule.
     uint64_t round = 0;
     for (size_t c = 0; c < n_chains; ++c) {
       for (const Splat& sp : out[c].splats()) {
-        double* sum = (sp.layer == kMetropolisLayer ? pop.metropolis : pop.large).data() + 3 * sp.pixel;
-        for (int ch = 0; ch < 3; ++ch) sum[ch] += sp.value[ch];
+        ExactSums& sum = sp.layer == kMetropolisLayer ? pop.metropolis : pop.large;
+        for (int ch = 0; ch < 3; ++ch) rejected += !sum.add(3 * sp.pixel + ch, sp.value[ch]);
       }
       round += done[c];
     }
     if (!rounds.finish(round, elapsed(), control)) break;
   }
+  invalid.fetch_add(rejected, std::memory_order_relaxed);
   pop.mutations = rounds.total();
-  pop.time_limited = rounds.time_limited();
   for (size_t c = 0; c < n_chains; ++c) {
     pop.accepted += accepted[c];
-    pop.large_steps += large_f[c].n;
+    pop.large_steps += pop.large_f[c].n;
     pop.large_steps_accepted += large_acc[c];
     pop.zero_proposals += zero[c];
-    pop.large_f += large_f[c];
   }
-  return pop;
+  return rounds.time_limited();
 }
 
 // Adds a population's estimate to `image`: its Metropolis layer rescaled from the b it was
 // splatted with to the final b, its large-step layer as it is (see run_chains), over its mutations.
-void add_estimate(const Population& pop, double b_splat, double b_final, std::vector<double>& image) {
+void add_estimate(const PopulationPart& pop, double b_splat, double b_final, std::vector<double>& image) {
   if (pop.mutations == 0) return;
   const double m = static_cast<double>(pop.mutations);
   const double k = b_final / b_splat / m;
-  for (size_t i = 0; i < image.size(); ++i) image[i] += pop.metropolis[i] * k;
-  for (size_t i = 0; i < pop.large.size(); ++i) image[i] += pop.large[i] / m;
+  for (size_t i = 0; i < image.size(); ++i) image[i] += pop.metropolis.value(i) * k;
+  for (size_t i = 0; i < pop.large.size(); ++i) image[i] += pop.large.value(i) / m;
 }
 
-void add_population(MltStats& mlt, const Population& pop) {
+void add_population(MltStats& mlt, const PopulationPart& pop) {
   mlt.mutations += pop.mutations;
   mlt.accepted += pop.accepted;
   mlt.large_steps += pop.large_steps;
@@ -303,136 +307,180 @@ void add_population(MltStats& mlt, const Population& pop) {
 }
 
 // Emitters seen directly and direct light by BDPT, when asked for; true when that is all.
-bool render_direct(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, MltResult& result,
-                   std::vector<double>& image, RenderControl& control) {
+bool render_direct(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, ChainStartUp& start,
+                   RenderControl& control) {
   if (opt.direct_spp == 0) return false;
   const RenderResult r = render_direct_light(scene, camera, opt, opt.direct_spp, opt.heuristic, control,
                                              kDirectShare * opt.time_limit);
   const std::vector<float> mean = r.film.mean();
-  std::copy(mean.begin(), mean.end(), image.begin());
-  result.direct = r.stats;
+  std::copy(mean.begin(), mean.end(), start.image.begin());
+  start.direct = r.stats;
   return control.cancelled() || (opt.max_depth >= 0 && opt.max_depth <= 2);
 }
 
 }  // namespace
 
-MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
-                        RenderControl& control) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  const std::function<double()> elapsed = [start] {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
-  MltResult result;
-  MltStats& mlt = result.mlt;
+ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
+                             RenderControl& control, const std::function<double()>& elapsed) {
+  ChainStartUp start;
+  MltStats& mlt = start.mlt;
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
-  std::vector<double> image(3 * pixels, 0.0);  // direct light, then each population's estimate
+  start.image.assign(3 * pixels, 0.0);
   SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
   std::atomic<uint64_t> invalid{0};
-  if (!render_direct(scene, camera, opt, result, image, control)) {
+  if (!render_direct(scene, camera, opt, start, control)) {
     const uint64_t target = pixels * opt.spp;  // 0: until the time limit
     control.total.store(target);
     const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
     const size_t n_chains = std::max<uint32_t>(opt.chains, 1);
-
-    if (opt.multiplexed) {
-      // Multiplexed MLT: one population of chains per path length d, each with its own b_d from
-      // its bootstrap; chains, mutations and time are allocated in proportion to the bootstrap
-      // b_d, deterministically, so the brightness does not depend on which lengths the chains
-      // happened to visit. Each b_d is then refined by its chains' large steps, and its
-      // population's Metropolis part rescaled to it.
-      const int first = opt.direct_spp > 0 ? 3 : 1;
-      const size_t depths = static_cast<size_t>(opt.max_depth) + 1;
-      std::vector<std::vector<double>> f_boot(depths);
-      std::vector<double> b_boot(depths, 0.0);
-      double b_total = 0.0;
-      for (int d = first; d <= opt.max_depth; ++d) {
-        const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-        // Under a time limit the lengths share the bootstrap's share.
-        const double seconds = kBootstrapShare * opt.time_limit / static_cast<double>(opt.max_depth - first + 1);
-        f_boot[d] = bootstrap(make, opt, hash_combine(opt.seed, kBootstrapStream + d), n_boot, seconds, elapsed,
-                              control, rays, invalid);
-        b_boot[d] = estimate_of(f_boot[d]).mean();
-        b_total += b_boot[d];
-      }
-      mlt.b_splatted = b_total;
-      mlt.b_per_depth.assign(depths, 0.0);
-      mlt.b_per_depth_ci95.assign(depths, 0.0);
-      mlt.mutations_per_depth.assign(depths, 0);
-      uint64_t target_sum = 0;
-      std::vector<uint64_t> targets(depths, 0);
-      for (int d = first; d <= opt.max_depth && target > 0; ++d) {
-        if (b_boot[d] > 0.0) {
-          targets[d] = std::max<uint64_t>(1, std::llround(static_cast<double>(target) * b_boot[d] / b_total));
-        }
-        target_sum += targets[d];
-      }
-      if (target > 0) control.total.store(target_sum);
-      // Smallest b_d first: each length gets its share of the time left, so the overrun of a
-      // length's last round falls on the larger shares after it, where it matters least.
-      std::vector<int> order(static_cast<size_t>(opt.max_depth - first + 1));
-      std::iota(order.begin(), order.end(), first);
-      std::stable_sort(order.begin(), order.end(), [&](int i, int j) { return b_boot[i] < b_boot[j]; });
-      double var_total = 0.0, b_left = b_total;
-      for (const int d : order) {
-        if (control.cancelled()) break;
-        MeanEstimate b_d = estimate_of(f_boot[d]);
-        if (b_boot[d] > 0.0) {
-          double deadline = 0.0;
-          if (opt.time_limit > 0.0) {
-            const double now = elapsed();
-            deadline = now + std::max(0.0, opt.time_limit - now) * std::min(1.0, b_boot[d] / b_left);
-            b_left -= b_boot[d];
-          }
-          const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
-          const size_t chains_d =
-              std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * b_boot[d] / b_total)));
-          const Population pop =
-              run_chains(make, opt, f_boot[d], hash_combine(opt.seed, kBootstrapStream + d),
-                         hash_combine(opt.seed, kChainStream + d), chains_d, targets[d], deadline, b_boot[d], pixels,
-                         elapsed, control, rays, invalid);
-          add_population(mlt, pop);
-          mlt.mutations_per_depth[d] = pop.mutations;
-          result.stats.time_limited |= pop.time_limited;
-          b_d += pop.large_f;
-          add_estimate(pop, b_boot[d], b_d.mean(), image);
-        }
-        mlt.b_per_depth[d] = b_d.mean();
-        mlt.b_per_depth_ci95[d] = 1.96 * std::sqrt(b_d.variance_of_mean());
-        mlt.b += b_d.mean();
-        var_total += b_d.variance_of_mean();
-        mlt.independent_samples += b_d.n;
-      }
-      mlt.b_ci95 = 1.96 * std::sqrt(var_total);
-    } else {
-      const auto make = [&] { return Evaluator(scene, camera, opt, 0); };
-      const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
-      const std::vector<double> f_boot = bootstrap(make, opt, boot_seed, n_boot, kBootstrapShare * opt.time_limit,
-                                                   elapsed, control, rays, invalid);
-      MeanEstimate b = estimate_of(f_boot);
-      mlt.b_splatted = b.mean();
-      if (mlt.b_splatted > 0.0) {
-        const Population pop =
-            run_chains(make, opt, f_boot, boot_seed, hash_combine(opt.seed, kChainStream), n_chains, target,
-                       opt.time_limit, mlt.b_splatted, pixels, elapsed, control, rays, invalid);
-        add_population(mlt, pop);
-        result.stats.time_limited = pop.time_limited;
-        b += pop.large_f;  // large steps are independent samples too (Kelemen et al.)
-        add_estimate(pop, mlt.b_splatted, b.mean(), image);
-      }
-      mlt.independent_samples = b.n;
-      mlt.b = b.mean();
-      mlt.b_ci95 = 1.96 * std::sqrt(b.variance_of_mean());
+    // One population of depth 0 (every path length), or with multiplexed MLT one per path length
+    // d, each with its own b_d from its bootstrap; chains, mutations and time are allocated in
+    // proportion to the bootstrap b_d, deterministically, so the brightness does not depend on
+    // which lengths the chains happened to visit. Each b_d is then refined by its chains' large
+    // steps, and its population's Metropolis part rescaled to it.
+    const int first = opt.multiplexed ? (opt.direct_spp > 0 ? 3 : 1) : 0;
+    const int last = opt.multiplexed ? opt.max_depth : 0;
+    double b_total = 0.0;
+    for (int d = first; d <= last; ++d) {
+      const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
+      // Under a time limit the lengths share the bootstrap's share.
+      const double seconds = kBootstrapShare * opt.time_limit / static_cast<double>(last - first + 1);
+      ChainPopulation p;
+      p.depth = d;
+      p.weights = bootstrap(make, opt, bootstrap_seed(opt, d), n_boot, seconds, elapsed, control, rays, invalid);
+      p.b_splat = estimate_of(p.weights).mean();
+      b_total += p.b_splat;
+      start.populations.push_back(std::move(p));
+    }
+    mlt.b_splatted = b_total;
+    for (ChainPopulation& p : start.populations) {
+      if (!(p.b_splat > 0.0)) continue;
+      const double share = p.b_splat / b_total;
+      p.chains = opt.multiplexed ? std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * share))) : n_chains;
+      p.target = opt.multiplexed && target > 0
+                     ? std::max<uint64_t>(1, std::llround(static_cast<double>(target) * p.b_splat / b_total))
+                     : target;
+    }
+    // Smallest b_d first: each length gets its share of the time left, so the overrun of a
+    // length's last round falls on the larger shares after it, where it matters least.
+    std::stable_sort(start.populations.begin(), start.populations.end(),
+                     [](const ChainPopulation& i, const ChainPopulation& j) { return i.b_splat < j.b_splat; });
+    uint64_t next_chain = 0;
+    for (ChainPopulation& p : start.populations) {
+      p.first_chain = next_chain;
+      next_chain += p.chains;
     }
   }
-  result.image.assign(image.begin(), image.end());
-  RenderStats& stats = result.stats;
-  stats.seconds = elapsed();
+  start.cancelled = control.cancelled();
+  rays.into(start.stats);
+  start.stats.invalid_samples = invalid.load();
+  start.stats.seconds = elapsed();
+  return start;
+}
+
+ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
+                        const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
+                        const std::function<double()>& elapsed) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  ChainPart part;
+  first = std::min(first, start.chains());
+  part.first_chain = first;
+  part.chains = std::min(count, start.chains() - first);
+  part.populations.resize(start.populations.size());
+  // The range's chains in population p: [lo, hi) in the population's own indices.
+  const auto range_in = [&, end = first + part.chains](const ChainPopulation& p) {
+    const auto local = [&](uint64_t c) {
+      return std::clamp(c, p.first_chain, p.first_chain + p.chains) - p.first_chain;
+    };
+    return std::pair<uint64_t, uint64_t>{local(first), local(end)};
+  };
+  SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));
+  std::atomic<uint64_t> invalid{0};
+  uint64_t total = 0;
+  for (const ChainPopulation& p : start.populations) {
+    const auto [lo, hi] = range_in(p);
+    total += ChainRounds(p.chains, lo, hi - lo, p.target, 0.0).range_target();
+  }
+  control.total.store(total);
+  double b_left = 0.0;
+  for (const ChainPopulation& p : start.populations) b_left += p.b_splat;
+  for (size_t i = 0; i < start.populations.size(); ++i) {
+    const ChainPopulation& p = start.populations[i];
+    if (p.chains == 0) continue;
+    double deadline = 0.0;
+    if (opt.time_limit > 0.0) {
+      const double now = elapsed();
+      deadline = now + std::max(0.0, opt.time_limit - now) * std::min(1.0, p.b_splat / b_left);
+      b_left -= p.b_splat;
+    }
+    const auto [lo, hi] = range_in(p);
+    if (lo >= hi || control.cancelled()) continue;
+    if (p.weights.empty()) throw std::invalid_argument("the chain start-up holds no bootstrap for these chains");
+    const auto make = [&, d = p.depth] { return Evaluator(scene, camera, opt, d); };
+    part.stats.time_limited |= run_chains(make, opt, p, lo, hi, deadline, pixels, elapsed, control, rays, invalid,
+                                          part.populations[i]);
+  }
+  RenderStats& stats = part.stats;
   rays.into(stats);
   stats.invalid_samples = invalid.load();
-  stats.samples = mlt.mutations;
-  stats.spp = static_cast<uint32_t>(mlt.mutations / pixels);
+  for (const PopulationPart& p : part.populations) stats.samples += p.mutations;
   stats.interrupted = control.cancelled();
+  return part;
+}
+
+MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const PssmltOptions& opt,
+                        const PinholeCamera& camera) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_part(start, part, 3 * pixels);
+  MltResult result;
+  result.direct = start.direct;
+  MltStats& mlt = result.mlt;
+  mlt.b_splatted = start.mlt.b_splatted;
+  std::vector<double> image = start.image;
+  const size_t depths = opt.multiplexed ? static_cast<size_t>(opt.max_depth) + 1 : 0;
+  if (opt.multiplexed && !start.populations.empty()) {
+    mlt.b_per_depth.assign(depths, 0.0);
+    mlt.b_per_depth_ci95.assign(depths, 0.0);
+    mlt.mutations_per_depth.assign(depths, 0);
+  }
+  double var_total = 0.0;
+  for (size_t i = 0; i < start.populations.size(); ++i) {
+    const ChainPopulation& p = start.populations[i];
+    MeanEstimate b = estimate_of(p.weights);
+    if (i < part.populations.size()) {
+      const PopulationPart& pop = part.populations[i];
+      MeanEstimate large_f;  // large steps are independent samples too (Kelemen et al.)
+      for (const MeanEstimate& e : pop.large_f) large_f += e;
+      b += large_f;
+      add_population(mlt, pop);
+      if (p.b_splat > 0.0) add_estimate(pop, p.b_splat, b.mean(), image);
+      if (opt.multiplexed) mlt.mutations_per_depth[static_cast<size_t>(p.depth)] = pop.mutations;
+    }
+    if (opt.multiplexed) {
+      mlt.b_per_depth[static_cast<size_t>(p.depth)] = b.mean();
+      mlt.b_per_depth_ci95[static_cast<size_t>(p.depth)] = 1.96 * std::sqrt(b.variance_of_mean());
+    }
+    mlt.b += b.mean();
+    var_total += b.variance_of_mean();
+    mlt.independent_samples += b.n;
+  }
+  mlt.b_ci95 = 1.96 * std::sqrt(var_total);
+  result.image.assign(image.begin(), image.end());
+  result.stats = chain_render_stats(start, part, mlt.mutations, pixels);
+  return result;
+}
+
+MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
+                        RenderControl& control) {
+  using Clock = std::chrono::steady_clock;
+  const auto start_time = Clock::now();
+  const std::function<double()> elapsed = [start_time] {
+    return std::chrono::duration<double>(Clock::now() - start_time).count();
+  };
+  const ChainStartUp start = pssmlt_start_up(scene, camera, opt, control, elapsed);
+  const ChainPart part = pssmlt_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed);
+  MltResult result = pssmlt_finish(start, part, opt, camera);
+  result.stats.seconds = elapsed();
   return result;
 }
 

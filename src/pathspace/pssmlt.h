@@ -13,6 +13,7 @@
 // through gaps.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/render_control.h"
@@ -20,6 +21,7 @@
 #include "geometry/scene.h"
 #include "pathspace/estimator_options.h"
 #include "pathspace/bdpt.h"
+#include "pathspace/chain_split.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/mlt_result.h"
 #include "pathspace/render_stats.h"
@@ -49,5 +51,17 @@ struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sa
 
 MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,
                         RenderControl& control);
+
+// render_pssmlt in the three parts of chain_split.h, for renders split into tasks. `elapsed`
+// is the render's clock in seconds (the time limit and the shares of start_up.h count on it).
+ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,
+                             RenderControl& control, const std::function<double()>& elapsed);
+// Chains [first, first + count) of the start-up (clamped to its chains).
+ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,
+                        const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
+                        const std::function<double()>& elapsed);
+// The image and stats from the start-up and the parts merged in chain order (seconds left 0).
+MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const PssmltOptions& options,
+                        const PinholeCamera& camera);
 
 }  // namespace dualight

@@ -1,0 +1,338 @@
+#include "pathspace/chain_split.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+namespace dualight {
+
+ChainStartUp ChainStartUp::for_chains(uint64_t first, uint64_t count) const {
+  ChainStartUp copy = *this;
+  for (ChainPopulation& p : copy.populations) {
+    const bool overlaps = p.first_chain < first + count && first < p.first_chain + p.chains;
+    if (!overlaps) {
+      p.weights.clear();
+      p.weights.shrink_to_fit();
+    }
+  }
+  return copy;
+}
+
+void ChainPart::merge(const ChainPart& next) {
+  // Gaps are allowed: an interrupted split render merges the parts that finished.
+  if (chains > 0 && next.first_chain < first_chain + chains) {
+    throw std::invalid_argument("chain parts must be merged in chain order");
+  }
+  if (chains == 0) first_chain = next.first_chain;
+  chains = next.first_chain + next.chains - first_chain;
+  if (populations.size() < next.populations.size()) populations.resize(next.populations.size());
+  for (size_t p = 0; p < next.populations.size(); ++p) {
+    PopulationPart& into = populations[p];
+    const PopulationPart& from = next.populations[p];
+    into.metropolis.add(from.metropolis);
+    into.large.add(from.large);
+    into.large_f.insert(into.large_f.end(), from.large_f.begin(), from.large_f.end());
+    into.mutations += from.mutations;
+    into.accepted += from.accepted;
+    into.large_steps += from.large_steps;
+    into.large_steps_accepted += from.large_steps_accepted;
+    into.zero_proposals += from.zero_proposals;
+  }
+  if (mutations.empty()) {
+    mutations = next.mutations;
+  } else if (mutations.size() == next.mutations.size()) {
+    for (size_t i = 0; i < mutations.size(); ++i) {
+      mutations[i].proposed += next.mutations[i].proposed;
+      mutations[i].accepted += next.mutations[i].accepted;
+      mutations[i].failed += next.mutations[i].failed;
+    }
+  } else if (!next.mutations.empty()) {
+    throw std::invalid_argument("chain parts with different mutation sets cannot be merged");
+  }
+  stats.samples += next.stats.samples;
+  stats.rays += next.stats.rays;
+  stats.skipped_connections += next.stats.skipped_connections;
+  stats.skipped_shadow_rays += next.stats.skipped_shadow_rays;
+  stats.unoccluded = next.stats.unoccluded;
+  stats.invalid_samples += next.stats.invalid_samples;
+  stats.seconds += next.stats.seconds;
+  stats.interrupted = stats.interrupted || next.stats.interrupted;
+  stats.time_limited = stats.time_limited || next.stats.time_limited;
+}
+
+void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t values) {
+  if (part.populations.size() > start.populations.size() || part.first_chain + part.chains > start.chains()) {
+    throw std::invalid_argument("the chain part does not belong to this start-up (more chains or populations)");
+  }
+  for (size_t i = 0; i < part.populations.size(); ++i) {
+    const PopulationPart& p = part.populations[i];
+    for (const ExactSums* sums : {&p.metropolis, &p.large}) {
+      if (!sums->empty() && sums->size() != values) {
+        throw std::invalid_argument("the chain part's image has another size than the start-up's");
+      }
+    }
+    if (p.large_f.size() > start.populations[i].chains) {
+      throw std::invalid_argument("the chain part has more chains than its population");
+    }
+  }
+}
+
+RenderStats chain_render_stats(const ChainStartUp& start, const ChainPart& part, uint64_t mutations,
+                               size_t pixels) {
+  RenderStats stats = part.stats;
+  stats.rays += start.stats.rays;
+  stats.skipped_connections += start.stats.skipped_connections;
+  stats.skipped_shadow_rays += start.stats.skipped_shadow_rays;
+  stats.unoccluded = start.stats.unoccluded;
+  stats.invalid_samples += start.stats.invalid_samples;
+  stats.samples = mutations;
+  stats.spp = static_cast<uint32_t>(mutations / pixels);
+  stats.interrupted = stats.interrupted || start.cancelled;
+  return stats;
+}
+
+namespace {
+
+// Little-endian bytes of plain values and vectors of them; the machines of one cluster share a
+// byte order, and a tag and version guard against other input.
+constexpr uint32_t kStartUpTag = 0x444c5355, kPartTag = 0x444c4350, kVersion = 1;
+
+class ByteWriter {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const char*>(&v);
+    bytes_.append(p, sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put<uint64_t>(v.size());
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put(const std::string& s) {
+    put<uint64_t>(s.size());
+    bytes_.append(s);
+  }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+};
+
+class ByteReader {
+ public:
+  explicit ByteReader(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const uint64_t n = get<uint64_t>();
+    if (n > (bytes_.size() - at_) / sizeof(T)) fail();
+    std::vector<T> v(n);
+    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+    return v;
+  }
+  std::string get_string() {
+    const uint64_t n = get<uint64_t>();
+    need(n);
+    std::string s = bytes_.substr(at_, n);
+    at_ += n;
+    return s;
+  }
+  void expect(uint32_t tag) {
+    if (bytes_.size() < 8 || get<uint32_t>() != tag || get<uint32_t>() != kVersion) {
+      throw std::invalid_argument("not a dualight chain start-up or chain part of this version");
+    }
+  }
+  void finish() const {
+    if (at_ != bytes_.size()) fail();
+  }
+
+ private:
+  void need(uint64_t n) const {
+    if (n > bytes_.size() - at_) fail();
+  }
+  [[noreturn]] static void fail() { throw std::invalid_argument("truncated or malformed chain data"); }
+  const std::string& bytes_;
+  size_t at_ = 0;
+};
+
+void put(ByteWriter& w, const RenderStats& s) {
+  w.put(s.samples);
+  w.put(s.rays);
+  w.put(s.skipped_connections);
+  w.put(s.skipped_shadow_rays);
+  w.put(s.unoccluded);
+  w.put(s.invalid_samples);
+  w.put(s.spp);
+  w.put(s.seconds);
+  w.put(s.interrupted);
+  w.put(s.time_limited);
+}
+
+RenderStats get_stats(ByteReader& r) {
+  RenderStats s;
+  s.samples = r.get<uint64_t>();
+  s.rays = r.get<uint64_t>();
+  s.skipped_connections = r.get<uint64_t>();
+  s.skipped_shadow_rays = r.get<uint64_t>();
+  s.unoccluded = r.get<uint8_t>() != 0;
+  s.invalid_samples = r.get<uint64_t>();
+  s.spp = r.get<uint32_t>();
+  s.seconds = r.get<double>();
+  s.interrupted = r.get<uint8_t>() != 0;
+  s.time_limited = r.get<uint8_t>() != 0;
+  return s;
+}
+
+void put(ByteWriter& w, const ExactSums& s) {
+  w.put(s.exponent());
+  w.put(s.words());
+}
+
+ExactSums get_sums(ByteReader& r) {
+  const int exponent = r.get<int>();
+  return ExactSums(r.get_vector<uint64_t>(), exponent);
+}
+
+}  // namespace
+
+std::string to_bytes(const ChainStartUp& start) {
+  ByteWriter w;
+  w.put(kStartUpTag);
+  w.put(kVersion);
+  w.put(start.image);
+  put(w, start.direct);
+  put(w, start.stats);
+  const MltStats& m = start.mlt;
+  w.put(m.b);
+  w.put(m.b_ci95);
+  w.put(m.b_splatted);
+  w.put(m.independent_samples);
+  w.put(m.pilot_samples);
+  w.put<uint64_t>(start.populations.size());
+  for (const ChainPopulation& p : start.populations) {
+    w.put(p.depth);
+    w.put(p.weights);
+    w.put(p.b_splat);
+    w.put(p.first_chain);
+    w.put(p.chains);
+    w.put(p.target);
+    w.put(p.chain_ids);
+  }
+  w.put(start.pilot_luminance);
+  w.put(start.cancelled);
+  return w.take();
+}
+
+ChainStartUp start_up_from_bytes(const std::string& bytes) {
+  ByteReader r(bytes);
+  r.expect(kStartUpTag);
+  ChainStartUp start;
+  start.image = r.get_vector<double>();
+  start.direct = get_stats(r);
+  start.stats = get_stats(r);
+  MltStats& m = start.mlt;
+  m.b = r.get<double>();
+  m.b_ci95 = r.get<double>();
+  m.b_splatted = r.get<double>();
+  m.independent_samples = r.get<uint64_t>();
+  m.pilot_samples = r.get<uint64_t>();
+  const auto n = r.get<uint64_t>();
+  uint64_t next_chain = 0;
+  for (uint64_t i = 0; i < n; ++i) {
+    ChainPopulation p;
+    p.depth = r.get<int>();
+    p.weights = r.get_vector<double>();
+    p.b_splat = r.get<double>();
+    p.first_chain = r.get<uint64_t>();
+    p.chains = r.get<uint64_t>();
+    p.target = r.get<uint64_t>();
+    p.chain_ids = r.get_vector<uint32_t>();
+    const bool ids_fit = p.chain_ids.empty() || p.chain_ids.size() == p.chains;
+    if (p.first_chain != next_chain || p.chains > (1ull << 32) || !ids_fit) {
+      throw std::invalid_argument("malformed chain start-up: populations out of order");
+    }
+    next_chain += p.chains;
+    start.populations.push_back(std::move(p));
+  }
+  start.pilot_luminance = r.get_vector<double>();
+  start.cancelled = r.get<uint8_t>() != 0;
+  r.finish();
+  return start;
+}
+
+std::string to_bytes(const ChainPart& part) {
+  ByteWriter w;
+  w.put(kPartTag);
+  w.put(kVersion);
+  w.put(part.first_chain);
+  w.put(part.chains);
+  w.put<uint64_t>(part.populations.size());
+  for (const PopulationPart& p : part.populations) {
+    put(w, p.metropolis);
+    put(w, p.large);
+    w.put(p.large_f);
+    w.put(p.mutations);
+    w.put(p.accepted);
+    w.put(p.large_steps);
+    w.put(p.large_steps_accepted);
+    w.put(p.zero_proposals);
+  }
+  w.put<uint64_t>(part.mutations.size());
+  for (const MutationStats& m : part.mutations) {
+    w.put(m.name);
+    w.put(m.proposed);
+    w.put(m.accepted);
+    w.put(m.failed);
+  }
+  put(w, part.stats);
+  return w.take();
+}
+
+ChainPart part_from_bytes(const std::string& bytes) {
+  ByteReader r(bytes);
+  r.expect(kPartTag);
+  ChainPart part;
+  part.first_chain = r.get<uint64_t>();
+  part.chains = r.get<uint64_t>();
+  const auto n = r.get<uint64_t>();
+  if (n > bytes.size()) throw std::invalid_argument("truncated or malformed chain data");
+  part.populations.resize(n);
+  for (PopulationPart& p : part.populations) {
+    p.metropolis = get_sums(r);
+    p.large = get_sums(r);
+    p.large_f = r.get_vector<MeanEstimate>();
+    p.mutations = r.get<uint64_t>();
+    p.accepted = r.get<uint64_t>();
+    p.large_steps = r.get<uint64_t>();
+    p.large_steps_accepted = r.get<uint64_t>();
+    p.zero_proposals = r.get<uint64_t>();
+  }
+  const auto m = r.get<uint64_t>();
+  if (m > bytes.size()) throw std::invalid_argument("truncated or malformed chain data");
+  for (uint64_t i = 0; i < m; ++i) {
+    MutationStats s;
+    s.name = r.get_string();
+    s.proposed = r.get<uint64_t>();
+    s.accepted = r.get<uint64_t>();
+    s.failed = r.get<uint64_t>();
+    part.mutations.push_back(std::move(s));
+  }
+  part.stats = get_stats(r);
+  r.finish();
+  return part;
+}
+
+}  // namespace dualight
