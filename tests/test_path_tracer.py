@@ -110,6 +110,21 @@ def test_progress_callback_reports_and_its_errors_propagate() -> None:
         dualight.render(scene, spp=100000, progress=broken)
 
 
+def test_progress_bar_follows_a_new_total() -> None:
+    """The MLT methods report the direct light's samples, then the chains' mutations: the bar
+    starts over with the new total instead of ending at the wrong one."""
+    from dualight.render import _TqdmProgress
+
+    bar = _TqdmProgress("test")
+    bar(10, 100)
+    bar(100, 100)
+    bar(5, 40)
+    assert bar._bar.total == 40 and bar._bar.n == 5
+    bar(40, 40)
+    assert bar._bar.n == bar._bar.total == 40
+    bar.close()
+
+
 @pytest.fixture
 def ctrl_c_raises():
     """Python's own SIGINT handler for the test: a process started in the background by a

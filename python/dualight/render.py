@@ -19,7 +19,8 @@ ProgressCallback = Callable[[int, int], None]
 
 
 class _TqdmProgress:
-    """Adapts the core's (done, total) callback to a tqdm bar, created on first use."""
+    """Adapts the core's (done, total) callback to a tqdm bar, created on first use and reset
+    when the total changes."""
 
     def __init__(self, description: str) -> None:
         self._description = description
@@ -32,6 +33,9 @@ class _TqdmProgress:
             self._bar = tqdm(
                 total=total or None, desc=self._description, unit="spl", unit_scale=True
             )
+        elif total and total != self._bar.total:
+            # A new phase (the MLT methods: direct light, then the chains' mutations).
+            self._bar.reset(total=total)
         self._bar.n = done
         self._bar.refresh()
 

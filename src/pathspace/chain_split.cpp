@@ -61,6 +61,14 @@ void ChainPart::merge(const ChainPart& next) {
   stats.time_limited = stats.time_limited || next.stats.time_limited;
 }
 
+ChainPart empty_part(const ChainStartUp& start, uint64_t first, uint64_t count) {
+  ChainPart part;
+  part.first_chain = std::min(first, start.chains());
+  part.chains = std::min(count, start.chains() - part.first_chain);
+  part.populations.resize(start.populations.size());
+  return part;
+}
+
 void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t values) {
   if (part.populations.size() > start.populations.size() || part.first_chain + part.chains > start.chains()) {
     throw std::invalid_argument("the chain part does not belong to this start-up (more chains or populations)");

@@ -63,6 +63,9 @@ struct ChainPart {
   void merge(const ChainPart& next);
 };
 
+// A part for chains [first, first + count) of `start` (clamped to its chains), with nothing done.
+ChainPart empty_part(const ChainStartUp& start, uint64_t first, uint64_t count);
+
 // Throws std::invalid_argument unless `part` fits `start` (populations, sums of `values` each).
 void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t values);
 

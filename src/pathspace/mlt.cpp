@@ -338,11 +338,8 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
                      const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                      const std::function<double()>& elapsed) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
-  ChainPart part;
-  first = std::min(first, start.chains());
-  part.first_chain = first;
-  part.chains = std::min(count, start.chains() - first);
-  part.populations.resize(start.populations.size());
+  ChainPart part = empty_part(start, first, count);
+  first = part.first_chain;
   const MutationSet mutations(opt, camera, scene.features());
   for (size_t i = 0; i < mutations.size(); ++i) part.mutations.push_back({mutations[i].name(), 0, 0, 0});
   SharedTraceCounters rays(connections_unoccluded(scene, camera, opt.skip_unneeded));

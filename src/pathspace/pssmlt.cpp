@@ -382,11 +382,8 @@ ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const P
                         const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                         const std::function<double()>& elapsed) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
-  ChainPart part;
-  first = std::min(first, start.chains());
-  part.first_chain = first;
-  part.chains = std::min(count, start.chains() - first);
-  part.populations.resize(start.populations.size());
+  ChainPart part = empty_part(start, first, count);
+  first = part.first_chain;
   // The range's chains in population p: [lo, hi) in the population's own indices.
   const auto range_in = [&, end = first + part.chains](const ChainPopulation& p) {
     const auto local = [&](uint64_t c) {
