@@ -16,12 +16,14 @@ SITE=$BUILD/site
 # A few minutes under the sanitizers: the fast tests of the areas that reach the C++ core (scene
 # building, image I/O, BSDFs, samplers, each estimator, form factors and the solvers). The
 # statistical MLT tests (100000-sample bootstraps at 64 x 64) take too long under ASan: one
-# deterministic MLT render stands in for them.
+# deterministic MLT render stands in for them, and the chain split (exact sums, chain parts
+# through bytes) runs in process.
 PYTEST_FILES=${PYTEST_FILES:-"tests/test_scene.py tests/test_image.py tests/test_materials.py \
 tests/test_sampler.py tests/test_path_tracer.py tests/test_bdpt.py tests/test_form_factors.py \
 tests/test_radiosity.py tests/test_hierarchical.py tests/test_skipping.py \
 tests/test_mlt_path_space.py::test_mlt_is_deterministic_and_reports_each_mutation \
-tests/test_mlt_mutations.py::test_single_mutation_hook_rejects_unknown_names"}
+tests/test_mlt_mutations.py::test_single_mutation_hook_rejects_unknown_names \
+tests/test_executor.py::test_any_split_of_the_chains_gives_the_same_image"}
 
 start=$(date +%s)
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDUALIGHT_SANITIZE=ON \

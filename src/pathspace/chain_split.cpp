@@ -118,7 +118,7 @@ class ByteWriter {
   void put(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     put<uint64_t>(v.size());
-    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   void put(const std::string& s) {
     put<uint64_t>(s.size());
@@ -147,7 +147,7 @@ class ByteReader {
     const uint64_t n = get<uint64_t>();
     if (n > (bytes_.size() - at_) / sizeof(T)) fail();
     std::vector<T> v(n);
-    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));  // data() may be null when empty
     at_ += n * sizeof(T);
     return v;
   }
@@ -315,8 +315,10 @@ ChainPart part_from_bytes(const std::string& bytes) {
   ChainPart part;
   part.first_chain = r.get<uint64_t>();
   part.chains = r.get<uint64_t>();
+  // Counts bounded by the bytes left (a population part takes at least 72, a mutation's 32), so
+  // that a malformed count fails as truncated instead of allocating without bound.
   const auto n = r.get<uint64_t>();
-  if (n > bytes.size()) throw std::invalid_argument("truncated or malformed chain data");
+  if (n > bytes.size() / 72) throw std::invalid_argument("truncated or malformed chain data");
   part.populations.resize(n);
   for (PopulationPart& p : part.populations) {
     p.metropolis = get_sums(r);
@@ -329,7 +331,7 @@ ChainPart part_from_bytes(const std::string& bytes) {
     p.zero_proposals = r.get<uint64_t>();
   }
   const auto m = r.get<uint64_t>();
-  if (m > bytes.size()) throw std::invalid_argument("truncated or malformed chain data");
+  if (m > bytes.size() / 32) throw std::invalid_argument("truncated or malformed chain data");
   for (uint64_t i = 0; i < m; ++i) {
     MutationStats s;
     s.name = r.get_string();

@@ -348,7 +348,9 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
     return part;
   }
   const ChainPopulation& population = start.populations.front();  // the only one
-  if (population.weights.empty()) throw std::invalid_argument("the chain start-up holds no bootstrap for these chains");
+  if (population.weights.empty() || population.chain_ids.size() != population.chains) {
+    throw std::invalid_argument("the chain start-up holds no bootstrap or chain seeds for these chains");
+  }
   PopulationPart& pop = part.populations.front();
   const BdptOptions bdpt = bootstrap_bdpt(opt);
   const PixelImportance importance = importance_of(start, camera);
