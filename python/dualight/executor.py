@@ -24,7 +24,7 @@ import concurrent.futures
 import os
 import time
 import uuid
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
@@ -101,6 +101,36 @@ def render_block(
 _SUMMED = ("samples", "rays", "skipped_connections", "skipped_shadow_rays", "invalid_samples")
 
 
+def _cancel(futures: Iterable[concurrent.futures.Future[Any]]) -> None:
+    """Cancels the tasks not started (those running finish on their worker)."""
+    for future in futures:
+        future.cancel()
+
+
+def _add_wall_stats(
+    stats: dict[str, Any],
+    start: float,
+    *,
+    interrupted: bool,
+    tasks: int,
+    workers: set[int],
+    executor: concurrent.futures.Executor,
+) -> None:
+    """Adds what every split render reports of its wall time (``start`` on
+    ``time.perf_counter``) and its tasks to ``stats``."""
+    seconds = time.perf_counter() - start
+    stats.update(
+        seconds=seconds,
+        samples_per_second=stats["samples"] / seconds if seconds > 0 else 0.0,
+        rays_per_second=stats["rays"] / seconds if seconds > 0 else 0.0,
+        interrupted=interrupted,
+        time_limited=False,
+        tasks=tasks,
+        workers=len(workers),
+        executor=type(executor).__name__,
+    )
+
+
 def render_split(
     executor: concurrent.futures.Executor,
     scene: Scene,
@@ -158,28 +188,19 @@ def render_split(
                 progress(finished * pixels, spp * pixels)
     except KeyboardInterrupt:
         interrupted = True
-        for future in futures:
-            future.cancel()
+        _cancel(futures)
         for k in sorted(done):  # still in block order, with the unfinished blocks left out
             merge(done.pop(k))
     except BaseException:
-        for future in futures:
-            future.cancel()
+        _cancel(futures)
         raise
 
-    seconds = time.perf_counter() - start
-    counts = film.counts()
-    stats.update(
-        # The light tracer's samples are particles, not the pixels' own samples.
-        spp=int(film.light_paths // pixels) if method == "light" else int(counts.min()),
-        seconds=seconds,
-        samples_per_second=stats["samples"] / seconds if seconds > 0 else 0.0,
-        rays_per_second=stats["rays"] / seconds if seconds > 0 else 0.0,
-        interrupted=interrupted,
-        time_limited=False,
-        tasks=len(blocks),
-        workers=len(stats["workers"]),
-        executor=type(executor).__name__,
+    # The light tracer's samples are particles, not the pixels' own samples.
+    light = method == "light"
+    stats["spp"] = int(film.light_paths // pixels) if light else int(film.counts().min())
+    _add_wall_stats(
+        stats, start, interrupted=interrupted, tasks=len(blocks), workers=stats["workers"],
+        executor=executor,
     )
     return {
         "mean": np.asarray(film.mean()),
@@ -245,7 +266,8 @@ def render_chain_split(
         for first in range(0, total, CHAINS_PER_TASK)
     ]
     parts: dict[int, Any] = {}
-    stats: dict[str, Any] = dict(task_seconds=0.0, task_cpu_seconds=0.0, workers=set())
+    task_seconds = task_cpu_seconds = 0.0
+    workers: set[int] = set()
     interrupted = bool(start.cancelled)
     futures: dict[concurrent.futures.Future[dict[str, Any]], int] = {}
     target = width * height * spp
@@ -271,18 +293,16 @@ def render_chain_split(
             part = result["part"]
             parts[futures[future]] = part
             interrupted = interrupted or part.interrupted
-            stats["task_seconds"] += part.seconds
-            stats["task_cpu_seconds"] += result["cpu_seconds"]
-            stats["workers"].add(result["worker"])
+            task_seconds += part.seconds
+            task_cpu_seconds += result["cpu_seconds"]
+            workers.add(result["worker"])
             if progress is not None:
                 progress(sum(p.mutations for p in parts.values()), target)
     except KeyboardInterrupt:
         interrupted = True
-        for future in futures:
-            future.cancel()
+        _cancel(futures)
     except BaseException:
-        for future in futures:
-            future.cancel()
+        _cancel(futures)
         raise
 
     result = _core.finish_chains(
@@ -293,22 +313,17 @@ def render_chain_split(
         [parts[first] for first in sorted(parts)],  # chain order
         interrupted,
     )
-    seconds = time.perf_counter() - start_time
-    out_stats = dict(result["stats"])
-    out_stats.update(
-        seconds=seconds,
-        samples_per_second=out_stats["samples"] / seconds if seconds > 0 else 0.0,
-        rays_per_second=out_stats["rays"] / seconds if seconds > 0 else 0.0,
-        interrupted=interrupted,
-        time_limited=False,
+    stats = dict(result["stats"])
+    stats.update(
         start_up_seconds=start.seconds,
-        tasks=len(ranges),
         chains=total,
-        workers=len(stats["workers"]),
-        task_seconds=stats["task_seconds"],
-        task_cpu_seconds=stats["task_cpu_seconds"],
-        executor=type(executor).__name__,
+        task_seconds=task_seconds,
+        task_cpu_seconds=task_cpu_seconds,
     )
-    result["stats"] = out_stats
+    _add_wall_stats(
+        stats, start_time, interrupted=interrupted, tasks=len(ranges), workers=workers,
+        executor=executor,
+    )
+    result["stats"] = stats
     result["keyboard_interrupt"] = interrupted
     return result

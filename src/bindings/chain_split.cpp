@@ -5,13 +5,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "bindings/interruptible.h"
 #include "bindings/render_result.h"
+#include "core/stopwatch.h"
 #include "pathspace/chain_split.h"
 #include "pathspace/mlt.h"
 #include "pathspace/pssmlt.h"
@@ -19,13 +19,6 @@
 namespace dualight::bindings {
 
 namespace {
-
-// The render's clock for one call: seconds since it began.
-std::function<double()> clock_from_now() {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  return [start] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-}
 
 ChainPart merged(const std::vector<const ChainPart*>& parts) {
   ChainPart all;
@@ -42,7 +35,7 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
                  const py::object& progress) {
         check_emitters(*scene);
         RenderControl control;
-        const auto elapsed = clock_from_now();
+        const std::function<double()> elapsed = Stopwatch();
         auto run = run_interruptible([&] { return start_up(*scene, camera, options, control, elapsed); }, control,
                                      progress);
         return std::move(run.result);
@@ -61,7 +54,7 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
                                 std::to_string(start.chains()));
         }
         RenderControl control;
-        const auto elapsed = clock_from_now();
+        const std::function<double()> elapsed = Stopwatch();
         auto run = run_interruptible(
             [&] {
               ChainPart part = chains(*scene, camera, options, start, first_chain, chain_count, control, elapsed);

@@ -9,15 +9,20 @@
 #include <cstdint>
 
 #include "core/render_control.h"
-#include "pathspace/chain_split.h"
 
 namespace dualight {
+
+// Chain c's mutations in all, of a population's target: split evenly, the first chains take the
+// rest. Fixed by the chain's index, so any range of chains run apart does the same work.
+inline uint64_t chain_quota(uint64_t target, uint64_t chains, uint64_t c) {
+  return target / chains + (c < target % chains ? 1 : 0);
+}
 
 class ChainRounds {
  public:
   // Chains [first, first + count) of a population of `chains` that share `target` mutations
   // (0: until the deadline); deadline: seconds on the caller's clock (0: none). Chain c's
-  // mutations in all are its chain_quota (chain_split.h) whichever range runs it.
+  // mutations in all are its chain_quota whichever range runs it.
   ChainRounds(uint64_t chains, uint64_t first, uint64_t count, uint64_t target, double deadline)
       : chains_(chains), first_(first), count_(count), target_(target), deadline_(deadline) {}
 

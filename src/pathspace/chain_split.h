@@ -78,9 +78,4 @@ std::string to_bytes(const ChainPart& part);
 ChainStartUp start_up_from_bytes(const std::string& bytes);
 ChainPart part_from_bytes(const std::string& bytes);
 
-// Chain c's share of a population's target: split evenly, the first chains take the rest.
-inline uint64_t chain_quota(uint64_t target, uint64_t chains, uint64_t c) {
-  return target / chains + (c < target % chains ? 1 : 0);
-}
-
 }  // namespace dualight

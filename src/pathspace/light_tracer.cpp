@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "film/splat_list.h"
 #include "pathspace/connect.h"
 #include "pathspace/subpath.h"
@@ -41,13 +41,11 @@ void trace_particle(const Scene& scene, const PinholeCamera& camera, const Light
 template <class Sampler>
 RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt,
                             Film& film, RenderControl& control) {
-  using Clock = std::chrono::steady_clock;
   const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
   const bool unbounded = opt.spp == 0;
   const uint64_t target = unbounded ? 0 : pixels * opt.spp;
   control.total.store(target);
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const Stopwatch elapsed;
 
   RenderStats stats;
   SharedTraceCounters work(connections_unoccluded(scene, camera, opt.skip_unneeded));

@@ -1,7 +1,6 @@
 #include "pathspace/mlt.h"
 
 #include <algorithm>
-#include <chrono>
 #include <functional>
 #include <stdexcept>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include "core/distribution.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "core/sampler.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
@@ -486,11 +486,7 @@ PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const Ch
 
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
                          RenderControl& control) {
-  using Clock = std::chrono::steady_clock;
-  const auto start_time = Clock::now();
-  const std::function<double()> elapsed = [start_time] {
-    return std::chrono::duration<double>(Clock::now() - start_time).count();
-  };
+  const std::function<double()> elapsed = Stopwatch();
   const ChainStartUp start = mlt_start_up(scene, camera, opt, control, elapsed);
   const ChainPart part = mlt_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed);
   PathMltResult out = mlt_finish(scene, start, part, opt, camera);

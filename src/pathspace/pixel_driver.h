@@ -7,10 +7,10 @@
 #pragma once
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "core/render_control.h"
 #include "core/sampler.h"
 #include "film/film.h"
@@ -37,7 +37,6 @@ struct PixelDriverOptions {
 template <class Sampler, class Estimate>
 RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderControl& control,
                          const Estimate& estimate) {
-  using Clock = std::chrono::steady_clock;
   constexpr int kTile = 16;
   const int w = film.width(), h = film.height();
   const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
@@ -57,8 +56,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   std::vector<TileSplats> tile_splats(opt.light_paths ? n_tiles : 0);
   SplatList no_splats;  // estimators without light paths never add to it
   RenderStats stats;
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const Stopwatch elapsed;
   const auto block_ends_at = [](uint32_t s) { return (s + 1) % kBlockSpp == 0; };
 
   uint32_t spp_done = 0;

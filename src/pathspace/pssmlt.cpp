@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <functional>
-#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -13,6 +11,7 @@
 #include "pathspace/shadow_ray.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "core/primary_sample_sampler.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
@@ -355,8 +354,9 @@ ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, co
     mlt.b_splatted = b_total;
     for (ChainPopulation& p : start.populations) {
       if (!(p.b_splat > 0.0)) continue;
-      const double share = p.b_splat / b_total;
-      p.chains = opt.multiplexed ? std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * share))) : n_chains;
+      p.chains = opt.multiplexed
+                     ? std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * p.b_splat / b_total)))
+                     : n_chains;
       p.target = opt.multiplexed && target > 0
                      ? std::max<uint64_t>(1, std::llround(static_cast<double>(target) * p.b_splat / b_total))
                      : target;
@@ -434,8 +434,8 @@ MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const 
   MltStats& mlt = result.mlt;
   mlt.b_splatted = start.mlt.b_splatted;
   std::vector<double> image = start.image;
-  const size_t depths = opt.multiplexed ? static_cast<size_t>(opt.max_depth) + 1 : 0;
   if (opt.multiplexed && !start.populations.empty()) {
+    const size_t depths = static_cast<size_t>(opt.max_depth) + 1;
     mlt.b_per_depth.assign(depths, 0.0);
     mlt.b_per_depth_ci95.assign(depths, 0.0);
     mlt.mutations_per_depth.assign(depths, 0);
@@ -469,11 +469,7 @@ MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const 
 
 MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
                         RenderControl& control) {
-  using Clock = std::chrono::steady_clock;
-  const auto start_time = Clock::now();
-  const std::function<double()> elapsed = [start_time] {
-    return std::chrono::duration<double>(Clock::now() - start_time).count();
-  };
+  const std::function<double()> elapsed = Stopwatch();
   const ChainStartUp start = pssmlt_start_up(scene, camera, opt, control, elapsed);
   const ChainPart part = pssmlt_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed);
   MltResult result = pssmlt_finish(start, part, opt, camera);
