@@ -276,6 +276,48 @@ def test_radiosity_refuses_specular_meshes(material: Any) -> None:
     assert len(dualight.radiosity.PatchMesh(scenes.cornell_box((16, 16)), max_edge=300.0)) > 0
 
 
+@pytest.mark.parametrize("material", [Mirror(), Dielectric(1.5)], ids=["mirror", "dielectric"])
+def test_core_radiosity_refuses_specular_scenes_by_flags(material: Any) -> None:
+    """The C++ solvers check the BSDFs' flags themselves (a caller of ``_core`` that skips
+    the Python check still gets a clear error); a diffuse scene passes the same calls."""
+    scene = scenes.cornell_box(resolution=(16, 16))
+    scene.add_mesh(*TRIANGLE, material=material, name="glass")
+    compiled = scene._compile()
+    glass = int(compiled.triangle_count) - 1
+    empty = np.zeros(0, np.uint32), np.zeros(0, np.float32), np.zeros(0, np.float32)
+    what = "transmits light" if isinstance(material, Dielectric) else "is specular"
+    for core in (compiled, scenes.cornell_box((16, 16))._compile()):
+        refused = core is compiled
+        calls = [
+            lambda c: _core.compute_form_factors(c, _core.FormFactorOptions(quadrature=1)),
+            lambda c: _core.HierarchicalSolver(c, *empty, 1.0, _core.HierarchicalOptions()),
+        ]
+        for call in calls:
+            if refused:
+                with pytest.raises(ValueError, match=f"triangle {glass} {what}"):
+                    call(core)
+            else:
+                call(core)
+
+
+def test_materials_describe_themselves_by_core_flags() -> None:
+    """Each material's flags come from its core BSDF; callers ask them, not the type."""
+    assert Diffuse().flags == {"diffuse", "reflection"}
+    assert Mirror().flags == {"specular", "reflection"}
+    assert Dielectric(1.3).flags == {"specular", "reflection", "transmission"}
+    assert Diffuse().is_diffuse_reflector and not Diffuse().has_specular
+    for m in (Mirror(), Dielectric()):
+        assert m.has_specular and not m.is_diffuse_reflector
+        assert isinstance(m, dualight.Material)
+    assert _core.Bsdf(_core.BsdfKind.dielectric).flags == ["specular", "reflection", "transmission"]
+    # Compiled features agree with the description.
+    scene = scenes.cornell_box((8, 8), variant="caustics")
+    assert scene.features["specular"] and scene.features["dielectric"]
+    assert not scene.features["all_diffuse"] and scene.has_specular
+    plain = scenes.cornell_box((8, 8)).features
+    assert plain["all_diffuse"] and not plain["specular"] and not plain["dielectric"]
+
+
 # --------------------------------------------------------------------------------------------
 # BSDF sampling: Lambertian
 

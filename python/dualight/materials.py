@@ -4,10 +4,13 @@
 * :class:`Mirror` -- a two-sided ideal specular reflector.
 * :class:`Dielectric` -- a smooth interface between air (IOR 1) and a material such as glass.
 
-Each is a frozen dataclass, validated when it is made, and each matches one Mitsuba 3 BSDF so
-that :func:`dualight.mitsuba.scene_dict` can export it exactly. ``Mirror`` and ``Dielectric``
-scatter into single directions (Dirac deltas): the path tracer follows them by sampling, and
-radiosity, which assumes diffuse surfaces, refuses scenes that contain them.
+Each is a frozen dataclass derived from :class:`Material`, validated when it is made, and each
+matches one Mitsuba 3 BSDF so that :func:`dualight.mitsuba.scene_dict` can export it exactly.
+Each describes itself: the core BSDF it compiles to (``_core_bsdf``) and, from the core's own
+flags, what it is (:attr:`Material.flags`: diffuse, glossy, specular, reflection,
+transmission). ``Mirror`` and ``Dielectric`` scatter into single directions (Dirac deltas,
+``"specular"``): the path tracer follows them by sampling, and radiosity, which assumes diffuse
+reflectors, refuses scenes that contain them.
 
 Directions and sides follow the mesh: a triangle's normal is the right-hand-rule normal
 ``(v1 - v0) x (v2 - v0)``; for a dielectric it points to the exterior (IOR 1), so a closed glass
@@ -16,10 +19,11 @@ object needs outward-facing triangles.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from numbers import Real
-from typing import Any, TypeAlias
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -46,8 +50,55 @@ def _reflectance(value: Any, owner: str) -> RGB:
     return (float(arr[0]), float(arr[1]), float(arr[2]))
 
 
+@functools.cache
+def _flags_of_kind(kind: str) -> frozenset[str]:
+    """The core BSDF's own flags for a kind (they depend on the kind alone)."""
+    from dualight import _core
+
+    return frozenset(_core.Bsdf(getattr(_core.BsdfKind, kind)).flags)
+
+
+class Material:
+    """Base class of every material :meth:`dualight.Scene.add_mesh` accepts.
+
+    A subclass names its core BSDF (``_kind``, a :class:`dualight._core.BsdfKind` name) and
+    gives the core's parameters (``_core_parameters``) and the RGB it stands for in
+    ``Mesh.reflectance`` (:attr:`rgb_reflectance`); everything else, what the material *is*,
+    comes from the core BSDF's flags, so no caller lists material types.
+    """
+
+    __slots__ = ()
+    _kind: ClassVar[str]
+
+    def _core_parameters(self) -> tuple[RGB, float]:
+        """``(reflectance, ior)`` as the core's ``Scene(kind=..., ior=...)`` arrays take them."""
+        raise NotImplementedError
+
+    @property
+    def rgb_reflectance(self) -> RGB:
+        """The RGB reflectance the material stands for in ``Mesh.reflectance``."""
+        return self._core_parameters()[0]
+
+    @property
+    def flags(self) -> frozenset[str]:
+        """What the material is, from its core BSDF: a subset of ``"diffuse"``, ``"glossy"``,
+        ``"specular"`` (Dirac lobes), ``"reflection"`` and ``"transmission"``."""
+        return _flags_of_kind(self._kind)
+
+    @property
+    def is_diffuse_reflector(self) -> bool:
+        """Only diffuse reflection: what radiosity can solve."""
+        f = self.flags
+        return "diffuse" in f and not f & {"glossy", "specular", "transmission"}
+
+    @property
+    def has_specular(self) -> bool:
+        """Some Dirac (ideal specular) lobe."""
+        return "specular" in self.flags
+
+
 @dataclass(frozen=True)
-class Diffuse:
+class Diffuse(Material):
     """A two-sided Lambertian reflector: ``f = reflectance / pi`` on both sides.
 
     Matches Mitsuba 3's ``twosided`` BSDF around ``diffuse`` with an RGB ``reflectance``.
@@ -64,13 +115,17 @@ class Diffuse:
     """
 
     reflectance: RGB = (0.5, 0.5, 0.5)
+    _kind: ClassVar[str] = "lambertian"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "reflectance", _reflectance(self.reflectance, "Diffuse"))
 
+    def _core_parameters(self) -> tuple[RGB, float]:
+        return self.reflectance, 1.0
+
 
 @dataclass(frozen=True)
-class Mirror:
+class Mirror(Material):
     """A two-sided ideal specular reflector: light leaves in the mirrored direction only,
     scaled by ``reflectance`` (no Fresnel term).
 
@@ -89,13 +144,17 @@ class Mirror:
     """
 
     reflectance: RGB = (1.0, 1.0, 1.0)
+    _kind: ClassVar[str] = "mirror"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "reflectance", _reflectance(self.reflectance, "Mirror"))
 
+    def _core_parameters(self) -> tuple[RGB, float]:
+        return self.reflectance, 1.0
+
 
 @dataclass(frozen=True)
-class Dielectric:
+class Dielectric(Material):
     """A smooth interface between the exterior (IOR 1, on the side of the triangle normals)
     and a clear interior of index ``ior``: Fresnel-weighted ideal reflection and refraction,
     with total internal reflection from inside. It absorbs nothing.
@@ -117,6 +176,7 @@ class Dielectric:
     """
 
     ior: float = 1.5
+    _kind: ClassVar[str] = "dielectric"
 
     def __post_init__(self) -> None:
         ior = self.ior
@@ -127,20 +187,6 @@ class Dielectric:
             raise ValueError(f"Dielectric ior must be finite and > 0, got {self.ior!r}")
         object.__setattr__(self, "ior", ior)
 
-
-#: Any material :meth:`dualight.Scene.add_mesh` accepts.
-Material: TypeAlias = Diffuse | Mirror | Dielectric
-
-
-def _reflectance_of(material: Material) -> RGB:
-    """The RGB reflectance a material stands for in ``Mesh.reflectance``.
-
-    The albedo of a :class:`Diffuse`, the reflectance of a :class:`Mirror`, and ``(1, 1, 1)``
-    for a :class:`Dielectric` (it absorbs nothing; Fresnel splits light between reflection and
-    refraction).
-    """
-    if isinstance(material, Diffuse | Mirror):
-        return material.reflectance
-    if isinstance(material, Dielectric):
-        return (1.0, 1.0, 1.0)
-    raise TypeError(f"not a dualight material: {type(material).__name__}")
+    def _core_parameters(self) -> tuple[RGB, float]:
+        # It absorbs nothing: Fresnel splits light between reflection and refraction.
+        return (1.0, 1.0, 1.0), self.ior

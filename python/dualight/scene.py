@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
-from dualight.materials import Dielectric, Diffuse, Material, Mirror, _reflectance_of
+from dualight.materials import Diffuse, Material
 
 if TYPE_CHECKING:
     from dualight import _core
@@ -149,12 +149,12 @@ class Mesh:
     def __post_init__(self) -> None:
         if self.material is None:
             object.__setattr__(self, "material", Diffuse(self.reflectance))
-        elif not isinstance(self.material, Diffuse | Mirror | Dielectric):
+        elif not isinstance(self.material, Material):
             raise TypeError(
-                f"{self.name}: material must be a dualight Diffuse, Mirror or Dielectric, "
-                f"got {type(self.material).__name__}"
+                f"{self.name}: material must be a dualight material (Diffuse, Mirror, "
+                f"Dielectric, ...), got {type(self.material).__name__}"
             )
-        elif tuple(self.reflectance) != _reflectance_of(self.material):
+        elif tuple(self.reflectance) != self.material.rgb_reflectance:
             raise ValueError(
                 f"{self.name}: reflectance {self.reflectance} disagrees with {self.material!r}"
             )
@@ -260,7 +260,7 @@ class Scene:
     def has_specular(self) -> bool:
         """Whether some mesh is a :class:`~dualight.Mirror` or :class:`~dualight.Dielectric`
         (delta BSDFs, which radiosity cannot handle)."""
-        return any(isinstance(m.material, Mirror | Dielectric) for m in self._meshes)
+        return any(m.material.has_specular for m in self._meshes)
 
     @property
     def features(self) -> dict[str, Any]:
@@ -338,10 +338,10 @@ class Scene:
             and a ``material``.
         """
         name = name or f"mesh{len(self._meshes)}"
-        if material is not None and not isinstance(material, Diffuse | Mirror | Dielectric):
+        if material is not None and not isinstance(material, Material):
             raise TypeError(
-                f"{name}: material must be a dualight.Diffuse, Mirror or Dielectric, "
-                f"got {type(material).__name__}"
+                f"{name}: material must be a dualight.Diffuse, Mirror or Dielectric (a "
+                f"dualight.Material), got {type(material).__name__}"
             )
         if degenerate not in ("raise", "drop"):
             raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
@@ -367,7 +367,7 @@ class Scene:
                 f"{name}: give either reflectance={rho} or material={material!r}, not both "
                 "(a material carries its own reflectance)"
             )
-        rho = _reflectance_of(material)
+        rho = material.rgb_reflectance
         Le = _colour(emission, f"{name}: emission", upper=None)
 
         # Areas in float32, as the renderer will see the triangles.
@@ -421,13 +421,10 @@ class Scene:
             positions, triangles, material_of = self.triangle_arrays()
             reflectance = np.array([m.reflectance for m in self._meshes], np.float32)
             emission = np.array([m.emission for m in self._meshes], np.float32)
-            kinds = {
-                Diffuse: _core.BsdfKind.lambertian,
-                Mirror: _core.BsdfKind.mirror,
-                Dielectric: _core.BsdfKind.dielectric,
-            }
-            kind = np.array([int(kinds[type(m.material)]) for m in self._meshes], np.uint32)
-            ior = np.array([getattr(m.material, "ior", 1.0) for m in self._meshes], np.float32)
+            kind = np.array(
+                [int(getattr(_core.BsdfKind, m.material._kind)) for m in self._meshes], np.uint32
+            )
+            ior = np.array([m.material._core_parameters()[1] for m in self._meshes], np.float32)
             self._compiled = _core.Scene(
                 positions.astype(np.float32),
                 triangles.astype(np.uint32),

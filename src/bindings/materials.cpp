@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bindings/numpy_util.h"
 
@@ -48,6 +50,17 @@ struct BsdfObject {
   Bsdf bsdf;
 };
 
+std::vector<std::string> flag_names(BsdfFlags f) {
+  std::vector<std::string> names;
+  for (const auto& [flag, name] : {std::pair{BsdfFlags::Diffuse, "diffuse"}, std::pair{BsdfFlags::Glossy, "glossy"},
+                                   std::pair{BsdfFlags::Specular, "specular"},
+                                   std::pair{BsdfFlags::Reflection, "reflection"},
+                                   std::pair{BsdfFlags::Transmission, "transmission"}}) {
+    if (has_any(f, flag)) names.emplace_back(name);
+  }
+  return names;
+}
+
 Vec3 row3(const std::vector<float>& a, size_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
 
 // Two (N, 3) direction arrays of equal length, or a py::value_error naming the mismatch.
@@ -79,6 +92,9 @@ void bind_materials(py::module_& m) {
            py::arg("ior") = 1.5f)
       .def_property_readonly("kind", [](const BsdfObject& b) { return static_cast<BsdfKind>(b.bsdf.index()); })
       .def_property_readonly("is_delta", [](const BsdfObject& b) { return is_delta(b.bsdf); })
+      .def_property_readonly("flags", [](const BsdfObject& b) { return flag_names(flags(b.bsdf)); },
+                             "What the BSDF is, as it reports itself: a subset of diffuse, glossy, "
+                             "specular (Dirac lobes), reflection, transmission.")
       .def(
           "sample",
           [](const BsdfObject& b, const FloatArray& wo_in, const FloatArray& u_in, TransportMode mode) {

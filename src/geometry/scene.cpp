@@ -40,7 +40,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
 
   normal_.resize(n_triangles);
   area_.resize(n_triangles);
-  std::vector<double> emitter_power;
+  emitter_of_prim_.assign(n_triangles, kNoEmitter);
   for (uint32_t prim = 0; prim < n_triangles; ++prim) {
     const Vec3 c = cross(vertex(prim, 1) - vertex(prim, 0), vertex(prim, 2) - vertex(prim, 0));
     const float len = length(c);
@@ -51,23 +51,21 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     area_[prim] = 0.5f * len;
     const Color& Le = materials_[material_of_[prim]].emission;
     if (!is_black(Le)) {
-      emissive_.push_back(prim);
-      emitter_power.push_back(static_cast<double>(area_[prim]) * average(Le));
+      emitter_of_prim_[prim] = static_cast<uint32_t>(emitters_.size());
+      emitters_.push_back(AreaEmitter{vertex(prim, 0), vertex(prim, 1), vertex(prim, 2), normal_[prim], area_[prim],
+                                      prim, Le});
     }
   }
-  emitter_pmf_by_prim_.assign(n_triangles, 0.f);
-  if (!emissive_.empty()) {
-    emitter_distribution_ = DiscreteDistribution(emitter_power);
-    for (size_t i = 0; i < emissive_.size(); ++i) {
-      emitter_pmf_by_prim_[emissive_[i]] = emitter_distribution_.pmf(i);
-    }
-  }
-  bool specular = false, dielectric = false;
+  emitter_sampler_ = PowerEmitterSampler(emitters_);
+  bool specular = false, transmission = false, all_diffuse = true;
   for (const uint32_t m : material_of_) {
-    specular = specular || is_delta(materials_[m].bsdf);
-    dielectric = dielectric || std::holds_alternative<Dielectric>(materials_[m].bsdf);
+    const BsdfFlags f = flags(materials_[m].bsdf);
+    specular = specular || has_specular(f);
+    transmission = transmission || has_transmission(f);
+    all_diffuse = all_diffuse && is_diffuse_reflector(f);
   }
-  features_ = compute_scene_features(positions_, triangles_, normal_, specular, dielectric, emissive_.size());
+  features_ = compute_scene_features(positions_, triangles_, normal_, {specular, transmission, all_diffuse},
+                                     emitters_.size());
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 
@@ -80,6 +78,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t = rh.t;
   hit.prim = prim;
   hit.material = &materials_[material_of_[prim]];
+  hit.emitter = emitter_at(prim);
   return true;
 }
 
@@ -123,20 +122,5 @@ bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const 
   const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
   return !accel_->occluded(Ray{o0, p1 - o0, 1.f - 1e-5f});
 }
-
-EmitterSample Scene::sample_emitter(float u_select, Point2 u) const {
-  const size_t i = emitter_distribution_.sample(u_select);
-  const uint32_t prim = emissive_[i];
-  const Point2 b = square_to_uniform_triangle(u);
-  EmitterSample s;
-  s.p = vertex(prim, 0) * (1.f - b.u - b.v) + vertex(prim, 1) * b.u + vertex(prim, 2) * b.v;
-  s.n = normal_[prim];
-  s.prim = prim;
-  s.Le = materials_[material_of_[prim]].emission;
-  s.pdf_a = emitter_distribution_.pmf(i) / area_[prim];
-  return s;
-}
-
-float Scene::emitter_pdf_a(uint32_t prim) const { return emitter_pmf_by_prim_[prim] / area_[prim]; }
 
 }  // namespace dualight

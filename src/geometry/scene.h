@@ -5,18 +5,20 @@
 #include <memory>
 #include <vector>
 
-#include "core/distribution.h"
 #include "core/ray.h"
 #include "core/sampling.h"
 #include "geometry/embree_accel.h"
 #include "geometry/scene_features.h"
+#include "lights/emitter_sampler.h"
 #include "materials/bsdf.h"
 
 namespace dualight {
 
+// A triangle's description: its BSDF and, when non-black, the radiance it emits from its
+// front side (the side of the right-hand-rule normal), which makes it an AreaEmitter.
 struct Material {
   Bsdf bsdf;
-  Color emission;  // radiance leaving the front side (the side of the right-hand-rule normal)
+  Color emission;
 };
 
 struct SurfaceHit {
@@ -25,13 +27,13 @@ struct SurfaceHit {
   float t = 0.f;
   uint32_t prim = 0;
   const Material* material = nullptr;
+  const Emitter* emitter = nullptr;  // the emitter on this triangle, if any
 };
 
-struct EmitterSample {
-  Vec3 p, n;
-  uint32_t prim = 0;  // the emitting triangle
-  Color Le;           // radiance leaving p on the front side
-  float pdf_a = 0.f;  // area density, including the choice of triangle
+// An emitter picked by the scene's power-proportional choice, with that choice's probability.
+struct EmitterChoice {
+  const Emitter* emitter = nullptr;
+  float pmf = 0.f;
 };
 
 class Scene {
@@ -50,7 +52,19 @@ class Scene {
   Vec3 normal(uint32_t prim) const { return normal_[prim]; }
   float area(uint32_t prim) const { return area_[prim]; }
   const Material& material(uint32_t prim) const { return materials_[material_of_[prim]]; }
-  size_t emitter_count() const { return emissive_.size(); }
+  size_t emitter_count() const { return emitters_.size(); }
+  const std::vector<Emitter>& emitters() const { return emitters_; }
+  // The emitter on triangle `prim`, or nullptr.
+  const Emitter* emitter_at(uint32_t prim) const {
+    const uint32_t i = emitter_of_prim_[prim];
+    return i == kNoEmitter ? nullptr : &emitters_[i];
+  }
+  // Power-proportional choice of an emitter (there must be some), and its probability for `e`.
+  EmitterChoice choose_emitter(float u) const {
+    const size_t i = emitter_sampler_.sample(u);
+    return {&emitters_[i], emitter_sampler_.pmf(i)};
+  }
+  float emitter_pmf(const Emitter& e) const { return emitter_sampler_.pmf(static_cast<size_t>(&e - emitters_.data())); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
@@ -66,14 +80,6 @@ class Scene {
   // space such as a pinhole camera.
   bool visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const;
 
-  EmitterSample sample_emitter(float u_select, Point2 u) const;
-  // Area density of sample_emitter producing a point on triangle `prim`.
-  float emitter_pdf_a(uint32_t prim) const;
-  // Radiance leaving a surface point towards w (one-sided emitters).
-  static Color emitted(const SurfaceHit& hit, const Vec3& w) {
-    return dot(hit.n, w) > 0.f ? hit.material->emission : Color(0.f);
-  }
-
  private:
 
   std::vector<float> positions_;
@@ -82,9 +88,10 @@ class Scene {
   std::vector<Material> materials_;
   std::vector<Vec3> normal_;
   std::vector<float> area_;
-  std::vector<uint32_t> emissive_;            // triangle ids with non-zero emission
-  std::vector<float> emitter_pmf_by_prim_;    // selection probability, 0 for non-emitters
-  DiscreteDistribution emitter_distribution_;  // over emissive_, proportional to power
+  static constexpr uint32_t kNoEmitter = 0xffffffffu;
+  std::vector<Emitter> emitters_;           // one AreaEmitter per emissive triangle, in triangle order
+  std::vector<uint32_t> emitter_of_prim_;   // index into emitters_, kNoEmitter for the others
+  PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
   SceneFeatures features_;
   std::unique_ptr<EmbreeAccel> accel_;

@@ -68,11 +68,12 @@ bool SceneFeatures::encloses(const Vec3& p) const {
 }
 
 SceneFeatures compute_scene_features(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                                     const std::vector<Vec3>& normals, bool specular, bool dielectric,
+                                     const std::vector<Vec3>& normals, const MaterialFeatures& materials,
                                      uint64_t emitter_triangles) {
   SceneFeatures f;
-  f.specular = specular;
-  f.dielectric = dielectric;
+  f.specular = materials.specular;
+  f.dielectric = materials.transmission;
+  f.diffuse_only = materials.all_diffuse;
   f.emitter_triangles = emitter_triangles;
   const std::vector<uint32_t> id = merged_vertex_ids(positions);
   f.closed = is_closed(triangles, id);

@@ -1,7 +1,8 @@
 // What a scene holds, computed once when the Scene is built, so that estimators and solvers can
 // skip work that cannot contribute (and say so in their statistics):
-//   specular / dielectric   delta BSDFs present (radiosity needs none; MLT's caustic and
-//                           multi-chain perturbations need some);
+//   specular / dielectric   BSDFs with Dirac lobes, with transmission (MLT's caustic and
+//   / all_diffuse           multi-chain perturbations need specular ones; radiosity needs all
+//                           BSDFs diffuse reflectors), from the BSDFs' own flags;
 //   closed                  every edge is shared by exactly two triangles, in opposite
 //                           directions (a watertight, consistently oriented surface: no light
 //                           leaves it);
@@ -24,9 +25,17 @@ struct Plane {
   float d;    // dot(n, x) = d on the plane
 };
 
+// What the scene's materials are, from their flags (bsdf_flags.h).
+struct MaterialFeatures {
+  bool specular = false;      // some BSDF has a Dirac lobe
+  bool transmission = false;  // some BSDF transmits (light can pass behind a surface)
+  bool all_diffuse = true;    // every BSDF is a diffuse reflector only
+};
+
 struct SceneFeatures {
-  bool specular = false;    // some mirror or dielectric
-  bool dielectric = false;  // some dielectric (light can pass behind a surface)
+  bool specular = false;    // some BSDF has a Dirac lobe (a mirror, glass)
+  bool dielectric = false;  // some BSDF transmits (glass: light can pass behind a surface)
+  bool diffuse_only = true;  // every BSDF is a diffuse reflector only (what radiosity solves)
   bool closed = false;
   bool convex_enclosure = false;
   bool convexity_checked = false;  // false when the scene was too large to check (then not convex)
@@ -34,7 +43,7 @@ struct SceneFeatures {
   std::vector<Plane> planes;  // the distinct triangle planes (for the enclosure test of a point)
   float tolerance = 0.f;      // distances below this count as "on the plane"
 
-  bool all_diffuse() const { return !specular; }
+  bool all_diffuse() const { return diffuse_only; }
   // Whether any two path vertices that face each other are mutually visible: a convex enclosure
   // without glass (refraction would carry paths behind a surface, outside the enclosure).
   bool unoccluded() const { return convex_enclosure && !dielectric; }
@@ -44,7 +53,7 @@ struct SceneFeatures {
 
 // positions: xyz per vertex; triangles: 3 indices each; normals: unit normal per triangle.
 SceneFeatures compute_scene_features(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                                     const std::vector<Vec3>& normals, bool specular, bool dielectric,
+                                     const std::vector<Vec3>& normals, const MaterialFeatures& materials,
                                      uint64_t emitter_triangles);
 
 }  // namespace dualight

@@ -63,8 +63,7 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   }
   if (s == 1) {
     const float u_select = sampler.next_1d();
-    const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
-    sampled = emitter_vertex(scene, es);
+    sampled = emitter_vertex(scene, u_select, sampler.next_2d());
   }
   const Vertex& qs = s == 1 ? sampled : light[s - 1];
   if (!qs.connectible()) {

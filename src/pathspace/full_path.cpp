@@ -7,45 +7,19 @@
 
 namespace dualight {
 
-SpecularLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light) {
-  SpecularLobe lobe;
+DeltaLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light) {
   const Frame frame = Frame::from_normal(v.n);
-  const Vec3 wo = frame.to_local(to_eye), wi = frame.to_local(to_light);
-  lobe.refraction = !same_hemisphere(wo, wi);
-  if (const auto* mirror = std::get_if<Mirror>(&v.material->bsdf)) {
-    if (lobe.refraction) return lobe;
-    lobe.coef = mirror->reflectance;
-    lobe.prob = 1.f;
-    return lobe;
-  }
-  const auto& glass = std::get<Dielectric>(v.material->bsdf);
-  const Fresnel F = fresnel_dielectric(wo.z, glass.eta);
-  if (!lobe.refraction) {
-    lobe.coef = Color(F.R);
-    lobe.prob = F.R;
-    return lobe;
-  }
-  // Radiance scales by (eta on the eye side / eta on the light side)^2 = 1 / eta_ratio^2.
-  lobe.importance_ratio = 1.f / (F.eta_ratio * F.eta_ratio);
-  lobe.prob = 1.f - F.R;
-  lobe.coef = Color(lobe.prob * lobe.importance_ratio);
-  return lobe;
+  return delta_lobe(v.material->bsdf, frame.to_local(to_eye), frame.to_local(to_light));
 }
 
 bool specular_direction(const Vertex& v, const Vec3& wo, bool refraction, Vec3& wi) {
   const Frame frame = Frame::from_normal(v.n);
   const Vec3 w = frame.to_local(wo);
   if (w.z == 0.f) return false;
-  if (!refraction) {
-    wi = frame.to_world(reflect_local(w));
-    return true;
-  }
-  const auto* glass = std::get_if<Dielectric>(&v.material->bsdf);
-  if (glass == nullptr) return false;
-  const Fresnel F = fresnel_dielectric(w.z, glass->eta);
-  if (F.R >= 1.f) return false;
-  const float inv = 1.f / F.eta_ratio;
-  wi = normalize(frame.to_world({-w.x * inv, -w.y * inv, w.z > 0.f ? -F.cos_t : F.cos_t}));
+  Vec3 local;
+  if (!delta_direction(v.material->bsdf, w, refraction, local)) return false;
+  // Refracted directions are renormalised (rounding in Snell's law); reflections keep their length.
+  wi = refraction ? normalize(frame.to_world(local)) : frame.to_world(local);
   return true;
 }
 
@@ -79,13 +53,13 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
 }
 
 double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced) {
-  if (i == 0) return z[0].is_emitter() ? scene.emitter_pdf_a(z[0].prim) : 0.0;
+  if (i == 0) return pdf_light_origin(scene, z[0]);
   const Vertex& v = z[i - 1];
   const Vec3 w = direction(v, z[i]);
-  if (i == 1) return solid_angle_to_area(cosine_hemisphere_pdf(dot(v.n, w)), v, z[i]);
+  if (i == 1) return solid_angle_to_area(emission_pdf_w(v, w), v, z[i]);
   const Vec3 to_light = direction(v, z[i - 2]);
   if (is_specular(v)) {
-    const SpecularLobe lobe = specular_lobe(v, w, to_light);
+    const DeltaLobe lobe = specular_lobe(v, w, to_light);
     return (forced ? 1.0 : lobe.prob) * lobe.importance_ratio * geometry_term(v, z[i]);
   }
   const Frame frame = Frame::from_normal(v.n);
@@ -99,7 +73,7 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
   if (i + 2 == z.size()) return solid_angle_to_area(camera.pdf_w(w), v, z[i]);
   const Vec3 to_eye = direction(v, z[i + 2]);
   if (is_specular(v)) {
-    const SpecularLobe lobe = specular_lobe(v, to_eye, w);
+    const DeltaLobe lobe = specular_lobe(v, to_eye, w);
     return (forced ? 1.0 : lobe.prob) * geometry_term(v, z[i]);
   }
   const Frame frame = Frame::from_normal(v.n);
@@ -119,6 +93,7 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
   hit.wo = -d;
   hit.prim = h.prim;
   hit.material = h.material;
+  hit.emitter = h.emitter;
   return true;
 }
 

@@ -32,17 +32,9 @@ inline double geometry_term(const Vertex& a, const Vertex& b) {
   return g;
 }
 
-// The lobe a specular vertex uses between the directions to the camera side and to the light
-// side: its coefficient (Radiance form), the probability that sampling picks it (the same from
-// either side: Fresnel reflectance is symmetric), and the ratio of its Radiance to Importance
-// forms (1 for reflection, (eta_eye side / eta_light side)^2 for refraction).
-struct SpecularLobe {
-  Color coef;
-  float prob = 0.f;
-  float importance_ratio = 1.f;
-  bool refraction = false;
-};
-SpecularLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light);
+// The Dirac lobe a specular vertex uses between the directions to the camera side and to the
+// light side (world, unit): its BSDF's delta_lobe (bsdf_sample.h) in v's frame.
+DeltaLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light);
 
 // The ideal direction of a specular vertex's lobe (`refraction` or reflection), leaving from the
 // side `wo` points to; false under total internal reflection or for a mirror asked to refract.

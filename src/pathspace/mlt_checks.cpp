@@ -213,7 +213,7 @@ constexpr float kGrazing = 1e-3f;  // |cos| below which a point is left out of t
 bool in_region(const Scene& scene, const Path& x, int v, const Vec3& p, const Vec3& n, uint32_t prim) {
   const Material& m = scene.material(prim);
   if (v == 0) {
-    return !is_black(m.emission) && dot(n, x[1].p - p) > 0.f;
+    return scene.emitter_at(prim) != nullptr && dot(n, x[1].p - p) > 0.f;
   }
   if (is_delta(m.bsdf)) return false;
   const Vec3 w0 = normalize(p - x[0].p), w2 = normalize(p - x[2].p);
@@ -256,13 +256,13 @@ BidirectionalCheck check_bidirectional_density(const Scene& scene, const Pinhole
   const std::vector<Path> paths = bootstrap_paths(scene, camera, opt, 2000);
   double emitter_area = 0.0;
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
-    if (!is_black(scene.material(prim).emission)) emitter_area += scene.area(prim);
+    if (scene.emitter_at(prim) != nullptr) emitter_area += scene.area(prim);
   }
   // On a grid over every emitter triangle: then both ways reach all of it.
   const auto sees_every_emitter_point = [&](const Path& p) {
     constexpr int kGrid = 8;
     for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
-      if (is_black(scene.material(prim).emission)) continue;
+      if (scene.emitter_at(prim) == nullptr) continue;
       for (int a = 0; a < kGrid; ++a) {
         for (int b = 0; a + b < kGrid; ++b) {
           const float u = (a + 0.5f) / (kGrid + 1), w = (b + 0.5f) / (kGrid + 1);

@@ -19,7 +19,7 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
       pdf_w = camera.pdf_w(w);
       break;
     case VertexType::Light:
-      pdf_w = cosine_hemisphere_pdf(dot(v.n, w));
+      pdf_w = emission_pdf_w(v, w);
       break;
     case VertexType::Surface: {
       const Frame frame = Frame::from_normal(v.n);
@@ -31,10 +31,12 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
   return solid_angle_to_area(pdf_w, v, next);
 }
 
-float pdf_light_origin(const Scene& scene, const Vertex& v) { return scene.emitter_pdf_a(v.prim); }
+float pdf_light_origin(const Scene& scene, const Vertex& v) {
+  return v.emitter != nullptr ? pdf_Le_position(*v.emitter, scene.emitter_pmf(*v.emitter)) : 0.f;
+}
 
 float pdf_light(const Vertex& v, const Vertex& next) {
-  return solid_angle_to_area(cosine_hemisphere_pdf(dot(v.n, normalize(next.p - v.p))), v, next);
+  return solid_angle_to_area(emission_pdf_w(v, normalize(next.p - v.p)), v, next);
 }
 
 // Recomputes from the stored directions (wo), as the walk evaluated its densities at the directions
@@ -50,7 +52,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       case VertexType::Camera:
         return camera.pdf_w(w);
       case VertexType::Light:
-        return cosine_hemisphere_pdf(dot(u.n, w));
+        return emission_pdf_w(u, w);
       case VertexType::Surface:
         break;
     }

@@ -27,28 +27,33 @@ struct Vertex {
   Vec3 wo;                 // unit direction to the previous vertex of the subpath (0 at its start)
   uint32_t prim = 0;
   const Material* material = nullptr;
+  const Emitter* emitter = nullptr;  // the emitter at p: a light subpath's start, or a surface hit on one
   Color beta;
   float pdf_fwd = 0.f, pdf_rev = 0.f;
   bool delta = false;
 
   bool on_surface() const { return type != VertexType::Camera; }
-  bool is_emitter() const { return material != nullptr && !is_black(material->emission); }
+  bool is_emitter() const { return emitter != nullptr; }
   // A connection (shadow ray) can end here: not at a delta BSDF.
   bool connectible() const { return type != VertexType::Surface || !is_delta(material->bsdf); }
 };
 
 using Path = std::vector<Vertex>;
 
-// The start of a light subpath (or the emitter end of a connection) at an emitter sample.
-inline Vertex emitter_vertex(const Scene& scene, const EmitterSample& es) {
+// The start of a light subpath (or the emitter end of a connection): a point on an emitter
+// the scene chose by power (u_select), sampled by the emitter (u).
+inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
+  const EmitterChoice choice = scene.choose_emitter(u_select);
+  const EmitterPoint y = sample_Le_position(*choice.emitter, choice.pmf, u);
   Vertex v;
   v.type = VertexType::Light;
-  v.p = es.p;
-  v.n = es.n;
-  v.prim = es.prim;
-  v.material = &scene.material(es.prim);
-  v.beta = Color(1.f / es.pdf_a);
-  v.pdf_fwd = es.pdf_a;
+  v.p = y.p;
+  v.n = y.n;
+  v.prim = y.prim;
+  v.material = &scene.material(v.prim);
+  v.emitter = choice.emitter;
+  v.beta = Color(1.f / y.pdf_a);
+  v.pdf_fwd = y.pdf_a;
   return v;
 }
 
@@ -61,9 +66,14 @@ inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& 
   return pdf;
 }
 
-// Radiance an emitter vertex sends towards `to` (one-sided emitters).
+// Radiance vertex v emits towards `to` (0 when v is on no emitter).
 inline Color emitted_towards(const Vertex& v, const Vec3& to) {
-  return dot(v.n, to - v.p) > 0.f ? v.material->emission : Color(0.f);
+  return v.emitter != nullptr ? radiance(*v.emitter, to - v.p) : Color(0.f);
+}
+
+// Solid-angle density of v's emitter emitting towards unit w (0 when v is on no emitter).
+inline float emission_pdf_w(const Vertex& v, const Vec3& w) {
+  return v.emitter != nullptr ? pdf_Le_direction(*v.emitter, w) : 0.f;
 }
 
 // The BSDF of surface vertex v from direction of `prev` (its wo) to `next`, in `mode`; f only,

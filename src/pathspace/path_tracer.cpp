@@ -9,6 +9,41 @@ namespace dualight {
 
 namespace {
 
+// Radiance of the emitter the path hit at `hit`, seen along wo_world, weighted against
+// next-event estimation from the previous vertex, which could have found the same point
+// (unless the path got here by a delta bounce or straight from the camera); times the path's
+// throughput beta.
+inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3& wo_world, const Color& beta,
+                           float prev_pdf_w, bool prev_delta) {
+  const Emitter& e = *hit.emitter;
+  const Color Le = radiance(e, wo_world);
+  if (is_black(Le)) return Color(0.f);
+  if (prev_delta) return beta * Le;
+  const float cos_light = std::abs(dot(hit.n, wo_world));
+  const float pdf_light_w = pdf_Li(e, scene.emitter_pmf(e), hit.t, cos_light);
+  return beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
+}
+
+// Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
+// path's throughput beta.
+inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Frame& frame, const Vec3& wo,
+                        const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
+  const EmitterChoice choice = scene.choose_emitter(u_select);
+  LightSample ls;
+  if (!sample_Li(*choice.emitter, choice.pmf, hit.p, u_light, ls)) return Color(0.f);
+  const Bsdf& bsdf = hit.material->bsdf;
+  const Vec3 wi = frame.to_local(ls.wi);
+  const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
+  if (is_black(f)) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
+  if (!shadow_ray_visible(scene, hit.p, hit.n, ls.p, ls.prim, counters)) return Color(0.f);
+  const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
+  const float weight = power_heuristic(ls.pdf_w, pdf_bsdf_w);
+  return beta * f * ls.Le * (std::abs(wi.z) * weight / ls.pdf_w);
+}
+
 // One camera path; returns its radiance estimate.
 template <class Sampler>
 Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Sampler& sampler,
@@ -27,17 +62,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     if (!scene.intersect(ray, hit)) break;
 
     const Vec3 wo_world = -ray.d;
-    const Color Le = Scene::emitted(hit, wo_world);
-    if (!is_black(Le)) {
-      if (prev_delta) {
-        L += beta * Le;
-      } else {
-        // The same point could have been found by next-event estimation from the previous vertex.
-        const float cos_light = std::abs(dot(hit.n, wo_world));
-        const float pdf_light_w = scene.emitter_pdf_a(hit.prim) * hit.t * hit.t / cos_light;
-        L += beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
-      }
-    }
+    if (hit.emitter != nullptr) L += emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta);
     if (!depth_allows(depth + 1)) break;
 
     // The frame keeps the geometric normal (it tells a dielectric's inside from its outside);
@@ -52,25 +77,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      const EmitterSample es = scene.sample_emitter(u_select, u_light);
-      const Vec3 to_light = es.p - hit.p;
-      const float dist2 = dot(to_light, to_light);
-      const Vec3 wi_world = to_light / std::sqrt(dist2);
-      const float cos_light = -dot(es.n, wi_world);
-      if (cos_light > 0.f && dist2 > 0.f) {
-        const Vec3 wi = frame.to_local(wi_world);
-        const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
-        if (is_black(f)) {
-          ++counters.skipped_connections;
-        } else {
-          if (shadow_ray_visible(scene, hit.p, ns, es.p, es.prim, counters)) {
-            const float pdf_light_w = es.pdf_a * dist2 / cos_light;
-            const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
-            const float weight = power_heuristic(pdf_light_w, pdf_bsdf_w);
-            L += beta * f * es.Le * (std::abs(wi.z) * weight / pdf_light_w);
-          }
-        }
-      }
+      L += next_event(scene, hit, frame, wo, beta, u_select, u_light, counters);
     }
 
     BsdfSample bs;

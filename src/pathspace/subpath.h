@@ -38,6 +38,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     v.wo = -ray.d;
     v.prim = hit.prim;
     v.material = hit.material;
+    v.emitter = hit.emitter;
     v.beta = beta;
     v.pdf_fwd = solid_angle_to_area(pdf_w, path.back(), v);
     path.push_back(v);
@@ -95,8 +96,7 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
                               TransportMode::Radiance, path, counters);
 }
 
-// A light subpath: a point on an emitter chosen by power, then a cosine-distributed direction
-// from its front side.
+// A light subpath: a point on an emitter chosen by power, then a direction the emitter samples.
 template <class Sampler>
 void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limits, Path& path,
                    TraceCounters& counters) {
@@ -104,15 +104,11 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   const size_t max_vertices = subpath_detail::max_vertices(limits.max_depth, 0);
   if (max_vertices == 0) return;
   const float u_select = sampler.next_1d();
-  const EmitterSample es = scene.sample_emitter(u_select, sampler.next_2d());
-  path.push_back(emitter_vertex(scene, es));
-  const Vec3 local = square_to_cosine_hemisphere(sampler.next_2d());
-  const float pdf_dir = cosine_hemisphere_pdf(local.z);
-  if (!(pdf_dir > 0.f)) return;
-  const Vec3 d = Frame::from_normal(es.n).to_world(local);
-  // beta = Le |cos| / (pdf_a pdf_dir) = Le pi / pdf_a
-  const Color beta = es.Le * (kPi / es.pdf_a);
-  subpath_detail::random_walk(scene, Ray{offset_ray_origin(es.p, es.n), d}, sampler, beta, pdf_dir,
+  path.push_back(emitter_vertex(scene, u_select, sampler.next_2d()));
+  const Vertex& y0 = path.back();
+  EmitterDirection d;
+  if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, sampler.next_2d(), d)) return;
+  subpath_detail::random_walk(scene, Ray{offset_ray_origin(y0.p, y0.n), d.w}, sampler, d.beta, d.pdf_w,
                               max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);
 }
 

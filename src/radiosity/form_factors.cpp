@@ -1,4 +1,5 @@
 #include "radiosity/form_factors.h"
+#include "radiosity/diffuse_only.h"
 
 #include <algorithm>
 #include <array>
@@ -136,6 +137,7 @@ double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 trian
 CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
                                FormFactorStats& stats, const FormFactorRows* wanted) {
   if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
+  require_diffuse_reflectors(patches, "radiosity form factors");
   const std::vector<QuadraturePoint> rule = triangle_rule(options.quadrature);
   const auto n = static_cast<uint32_t>(patches.triangle_count());
   if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {

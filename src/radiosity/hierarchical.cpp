@@ -1,4 +1,5 @@
 #include "radiosity/hierarchical.h"
+#include "radiosity/diffuse_only.h"
 
 #include <algorithm>
 #include <atomic>
@@ -40,6 +41,7 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
   if (!(options_.epsilon > 0.0)) throw std::invalid_argument("epsilon must be > 0");
   if (options_.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
   if (options_.sweeps < 1) throw std::invalid_argument("sweeps must be >= 1");
+  require_diffuse_reflectors(scene, "hierarchical radiosity");
   roots_ = static_cast<uint32_t>(scene.triangle_count());
   double largest = 0.0;
   elements_.reserve(roots_);
@@ -49,11 +51,12 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     e.normal = scene.normal(t);
     e.area = scene.area(t);
     e.root = t;
-    const Material& m = scene.material(t);
-    const Color rho = std::get<Lambertian>(m.bsdf).albedo;
+    const Color rho = diffuse_reflectance(scene.material(t).bsdf);
+    const Emitter* emitter = scene.emitter_at(t);
+    const Color Le = emitter != nullptr ? radiance(*emitter, e.normal) : Color(0.f);
     for (int c = 0; c < 3; ++c) {
       e.rho[c] = rho[c];
-      e.E[c] = kPi * m.emission[c];  // emitted radiosity
+      e.E[c] = kPi * Le[c];  // emitted radiosity
       emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminance[0] + e.E[1] * kLuminance[1] +
                                                                    e.E[2] * kLuminance[2]);
     }

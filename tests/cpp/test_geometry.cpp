@@ -22,8 +22,9 @@ TEST_CASE(hits_from_both_sides_with_right_hand_normal) {
   CHECK_NEAR(hit.p.x, 0.2f, 1e-6f);
   CHECK_NEAR(hit.p.y, 0.3f, 1e-6f);
   CHECK(hit.n.z > 0.99f);  // (v1 - v0) x (v2 - v0) = +z
-  CHECK(!is_black(Scene::emitted(hit, Vec3(0, 0, 1))));  // front side emits
-  CHECK(is_black(Scene::emitted(hit, Vec3(0, 0, -1))));  // back side does not
+  CHECK(hit.emitter != nullptr);
+  CHECK(!is_black(radiance(*hit.emitter, Vec3(0, 0, 1))));  // front side emits
+  CHECK(is_black(radiance(*hit.emitter, Vec3(0, 0, -1))));  // back side does not
   CHECK(scene.intersect(Ray{{0.2f, 0.3f, -1.f}, {0, 0, 1}}, hit));
   CHECK(!scene.intersect(Ray{{0.6f, 0.6f, 1.f}, {0, 0, -1}}, hit));  // past the hypotenuse
   CHECK(!scene.intersect(Ray{{0.2f, 0.3f, 1.f}, {0, 0, 1}}, hit));   // behind the origin
@@ -32,9 +33,13 @@ TEST_CASE(hits_from_both_sides_with_right_hand_normal) {
 
 TEST_CASE(emitter_sampling_density_is_one_over_area) {
   const Scene scene = unit_triangle_scene(Color(2.f));
-  const EmitterSample s = scene.sample_emitter(0.5f, {0.3f, 0.6f});
+  const EmitterChoice choice = scene.choose_emitter(0.5f);
+  CHECK(choice.emitter == scene.emitter_at(0));
+  CHECK_NEAR(choice.pmf, 1.f, 1e-6f);
+  const EmitterPoint s = sample_Le_position(*choice.emitter, choice.pmf, {0.3f, 0.6f});
   CHECK_NEAR(s.pdf_a, 2.f, 1e-5f);  // area 1/2
-  CHECK_NEAR(scene.emitter_pdf_a(0), 2.f, 1e-5f);
+  CHECK_NEAR(pdf_Le_position(*choice.emitter, choice.pmf), 2.f, 1e-5f);
+  CHECK(s.prim == 0);
   CHECK(s.p.x >= 0.f && s.p.y >= 0.f && s.p.x + s.p.y <= 1.f + 1e-6f && s.p.z == 0.f);
 }
 

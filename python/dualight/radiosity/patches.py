@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dualight.materials import Diffuse
 from dualight.scene import Scene
 
 if TYPE_CHECKING:
@@ -24,13 +23,14 @@ if TYPE_CHECKING:
 
 
 def require_diffuse(scene: Scene) -> None:
-    """Raise ``ValueError`` naming the first mesh of ``scene`` that is not :class:`Diffuse`.
+    """Raise ``ValueError`` naming the first mesh of ``scene`` whose material is not a diffuse
+    reflector (by its flags, :attr:`dualight.Material.is_diffuse_reflector`).
 
     Radiosity's linear system ``B = E + rho F B`` holds for Lambertian surfaces only; a mirror
     or glass would silently be rendered as something else.
     """
     for mesh in scene.meshes:
-        if not isinstance(mesh.material, Diffuse):
+        if not mesh.material.is_diffuse_reflector:
             raise ValueError(
                 f"radiosity assumes diffuse surfaces; mesh {mesh.name!r} is a "
                 f"{type(mesh.material).__name__} (use dualight.render for specular scenes)"

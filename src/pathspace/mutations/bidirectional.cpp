@@ -91,14 +91,16 @@ bool BidirectionalMutation::propose(const MutationContext& ctx, const Path& x, P
   for (int j = 0; j < s; ++j) {
     if (y.empty()) {
       const float u_select = rng.next_float();
-      const EmitterSample es = ctx.scene.sample_emitter(u_select, next_2d(rng));
-      y.push_back(emitter_vertex(ctx.scene, es));
+      y.push_back(emitter_vertex(ctx.scene, u_select, next_2d(rng)));
       continue;
     }
     const Vertex& v = y.back();
     Vec3 d;
     if (y.size() == 1) {
-      d = Frame::from_normal(v.n).to_world(square_to_cosine_hemisphere(next_2d(rng)));
+      // A direction of density 0 still makes the path: its transition density is then 0.
+      EmitterDirection emitted;
+      sample_Le_direction(*v.emitter, v.pdf_fwd, next_2d(rng), emitted);
+      d = emitted.w;
     } else if (!sample_scatter(v, direction(v, y[y.size() - 2]), TransportMode::Importance, next_2d(rng), d)) {
       return false;
     }

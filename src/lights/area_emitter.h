@@ -1,0 +1,97 @@
+// Diffuse area emitter on one triangle, as Mitsuba 3's `area` emitter and pbrt-v4's
+// DiffuseAreaLight: constant radiance Le leaving the front side (the right-hand-rule normal's).
+// Emission factors into a position part, uniform on the triangle, and a direction part, the
+// cosine lobe around the normal [Veach 1997, sec. 8.3.2: Le = Le0 * Le1].
+//
+// Densities include the emitter's selection probability `pmf` (the scene's power-proportional
+// choice, emitter_sampler.h): the area density is pmf / area, rounded once, so every estimator
+// computes it the same way.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "core/frame.h"
+#include "core/sampling.h"
+#include "lights/emitter_flags.h"
+
+namespace dualight {
+
+struct AreaEmitter {
+  Vec3 p0, p1, p2;  // the triangle's corners
+  Vec3 n;           // unit normal of the emitting side
+  float area = 0.f;
+  uint32_t prim = 0;  // the scene triangle
+  Color Le;           // radiance leaving the front side
+};
+
+// A point on an emitter, with its area density (selection included).
+struct EmitterPoint {
+  Vec3 p, n;
+  float pdf_a = 0.f;
+  uint32_t prim = 0;  // the scene triangle it lies on
+};
+// A direction of emission from an emitter point.
+struct EmitterDirection {
+  Vec3 w;             // unit
+  float pdf_w = 0.f;  // solid-angle density
+  Color beta;         // Le |cos| / (pdf_a pdf_w): the light subpath's throughput after it
+};
+// Next-event estimation: a point on the emitter seen from a reference point.
+struct LightSample {
+  Vec3 p, n;
+  Vec3 wi;            // unit, from the reference point towards p
+  float dist2 = 0.f;  // squared distance to p
+  float pdf_w = 0.f;  // solid-angle density at the reference point (selection included)
+  Color Le;           // radiance arriving from p
+  uint32_t prim = 0;  // the emitting triangle (the shadow ray's target)
+};
+
+constexpr EmitterFlags flags(const AreaEmitter&) { return EmitterFlags::Surface; }
+
+// The total power's weight for the emitter choice: area times mean radiance (pi cancels).
+inline double power(const AreaEmitter& e) { return static_cast<double>(e.area) * average(e.Le); }
+
+// Radiance leaving the emitter towards w (any length): one-sided.
+inline Color radiance(const AreaEmitter& e, const Vec3& w) { return dot(e.n, w) > 0.f ? e.Le : Color(0.f); }
+
+inline float pdf_Le_position(const AreaEmitter& e, float pmf) { return pmf / e.area; }
+inline EmitterPoint sample_Le_position(const AreaEmitter& e, float pmf, Point2 u) {
+  const Point2 b = square_to_uniform_triangle(u);
+  return {e.p0 * (1.f - b.u - b.v) + e.p1 * b.u + e.p2 * b.v, e.n, pdf_Le_position(e, pmf), e.prim};
+}
+
+// Directional density of emission towards unit w.
+inline float pdf_Le_direction(const AreaEmitter& e, const Vec3& w) { return cosine_hemisphere_pdf(dot(e.n, w)); }
+// pdf_a: the density of the emitter point the direction leaves from. False (with w and pdf_w
+// still set) when the direction has density 0.
+inline bool sample_Le_direction(const AreaEmitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
+  const Vec3 local = square_to_cosine_hemisphere(u);
+  d.pdf_w = cosine_hemisphere_pdf(local.z);
+  d.w = Frame::from_normal(e.n).to_world(local);
+  if (!(d.pdf_w > 0.f)) return false;
+  d.beta = e.Le * (kPi / pdf_a);  // Le cos / (pdf_a cos / pi)
+  return true;
+}
+
+// A point on the emitter that faces `ref`; false when the sampled point faces away.
+inline bool sample_Li(const AreaEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
+  const EmitterPoint y = sample_Le_position(e, pmf, u);
+  const Vec3 to_light = y.p - ref;
+  s.dist2 = dot(to_light, to_light);
+  s.wi = to_light / std::sqrt(s.dist2);
+  const float cos_light = -dot(y.n, s.wi);
+  if (!(cos_light > 0.f && s.dist2 > 0.f)) return false;
+  s.p = y.p;
+  s.n = y.n;
+  s.pdf_w = y.pdf_a * s.dist2 / cos_light;
+  s.Le = e.Le;
+  s.prim = y.prim;
+  return true;
+}
+// Solid-angle density of sample_Li finding the emitter point at distance `dist` whose normal
+// makes cosine `cos_light` with the direction to the reference point.
+inline float pdf_Li(const AreaEmitter& e, float pmf, float dist, float cos_light) {
+  return pdf_Le_position(e, pmf) * dist * dist / cos_light;
+}
+
+}  // namespace dualight

@@ -1,0 +1,46 @@
+// Emitters: a closed set held in a std::variant, evaluated by free functions (pbrt-v4's
+// base/light.h). Each member lives in its own file with its flags and maths: emission
+// (radiance, sample_Le_* / pdf_Le_* for light subpaths) and next-event estimation (sample_Li /
+// pdf_Li). Estimators ask through the dispatchers here and decide by flags (emitter_flags.h);
+// none writes an emitter's density itself. The scene chooses among emitters in proportion to
+// power (emitter_sampler.h) and passes that choice's probability in.
+#pragma once
+#include <variant>
+
+#include "lights/area_emitter.h"
+
+namespace dualight {
+
+using Emitter = std::variant<AreaEmitter>;
+
+inline EmitterFlags flags(const Emitter& e) {
+  return std::visit([](const auto& x) { return flags(x); }, e);
+}
+inline bool is_delta_position(const Emitter& e) { return is_delta_position(flags(e)); }
+inline bool is_delta_direction(const Emitter& e) { return is_delta_direction(flags(e)); }
+inline double power(const Emitter& e) {
+  return std::visit([](const auto& x) { return power(x); }, e);
+}
+inline Color radiance(const Emitter& e, const Vec3& w) {
+  return std::visit([&](const auto& x) { return radiance(x, w); }, e);
+}
+inline float pdf_Le_position(const Emitter& e, float pmf) {
+  return std::visit([&](const auto& x) { return pdf_Le_position(x, pmf); }, e);
+}
+inline EmitterPoint sample_Le_position(const Emitter& e, float pmf, Point2 u) {
+  return std::visit([&](const auto& x) { return sample_Le_position(x, pmf, u); }, e);
+}
+inline float pdf_Le_direction(const Emitter& e, const Vec3& w) {
+  return std::visit([&](const auto& x) { return pdf_Le_direction(x, w); }, e);
+}
+inline bool sample_Le_direction(const Emitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
+  return std::visit([&](const auto& x) { return sample_Le_direction(x, pdf_a, u, d); }, e);
+}
+inline bool sample_Li(const Emitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
+  return std::visit([&](const auto& x) { return sample_Li(x, pmf, ref, u, s); }, e);
+}
+inline float pdf_Li(const Emitter& e, float pmf, float dist, float cos_light) {
+  return std::visit([&](const auto& x) { return pdf_Li(x, pmf, dist, cos_light); }, e);
+}
+
+}  // namespace dualight
