@@ -35,8 +35,13 @@ inline float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
 inline Vec3 normalize(const Vec3& v) { return v / length(v); }
 constexpr float max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 constexpr float average(const Vec3& v) { return (v.x + v.y + v.z) * (1.f / 3.f); }
-// Rec. 709 / sRGB luminance of a linear RGB colour.
-constexpr float luminance(const Vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+// Rec. 709 / sRGB luminance weights of linear RGB, and the luminance of a colour (the float
+// weights are these doubles rounded once).
+inline constexpr double kLuminanceWeights[3] = {0.2126, 0.7152, 0.0722};
+constexpr float luminance(const Vec3& c) {
+  return static_cast<float>(kLuminanceWeights[0]) * c.x + static_cast<float>(kLuminanceWeights[1]) * c.y +
+         static_cast<float>(kLuminanceWeights[2]) * c.z;
+}
 constexpr bool is_black(const Vec3& v) { return v.x == 0.f && v.y == 0.f && v.z == 0.f; }
 inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

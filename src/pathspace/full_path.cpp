@@ -44,7 +44,7 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
   }
   double g = camera.importance(direction(z[k], z[k - 1]));
   for (size_t i = 0; i < k; ++i) g *= geometry_term(z[i], z[i + 1]);
-  const double lum = (0.2126 * f[0] + 0.7152 * f[1] + 0.0722 * f[2]) * g;
+  const double lum = (kLuminanceWeights[0] * f[0] + kLuminanceWeights[1] * f[1] + kLuminanceWeights[2] * f[2]) * g;
   if (!(lum > 0.0) || !std::isfinite(lum)) return value;
   value.f_lum = lum;
   value.color = Color(static_cast<float>(f[0] * g / lum), static_cast<float>(f[1] * g / lum),

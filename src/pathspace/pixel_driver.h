@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "core/parallel.h"
 #include "core/stopwatch.h"
@@ -29,36 +31,118 @@ struct PixelDriverOptions {
   uint32_t first_sample = 0;  // renders sample indices [first_sample, first_sample + spp)
 };
 
+namespace pixel_driver_detail {
+
+constexpr int kTile = 16;
+
+inline bool block_ends_at(uint32_t s) { return (s + 1) % kBlockSpp == 0; }
+
+// A tile's splats, and for each sample index of the pass where they end and how many pixels
+// (light paths) it covered.
+struct TileSplats {
+  SplatList list;
+  std::vector<std::pair<size_t, uint32_t>> rows;
+};
+
+struct TileRect {
+  int x0, y0, x1, y1;
+};
+
+// Sample indices [first, first + count) of every pixel of a tile, sample index by sample index
+// (so the tile's splats come grouped by sample index); `rows` (may be null) records where each
+// sample index's splats end.
+template <class Sampler, class Estimate>
+void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, uint32_t first, uint32_t count,
+                 const Estimate& estimate, RenderControl& control, TraceCounters& local, uint64_t& invalid,
+                 SplatList& splats, std::vector<std::pair<size_t, uint32_t>>* rows) {
+  const int w = film.width();
+  for (uint32_t s = first; s < first + count && !control.cancelled(); ++s) {
+    uint32_t row_paths = 0;
+    for (int y = r.y0; y < r.y1; ++y) {
+      for (int x = r.x0; x < r.x1; ++x) {
+        const size_t pixel = static_cast<size_t>(y) * w + x;
+        Sampler sampler(opt.seed, pixel, s);
+        const Point2 jitter = sampler.next_2d();
+        splats.begin_path();
+        Color value =
+            estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
+        splats.end_path();
+        if (!is_finite(value)) {
+          value = Color(0.f);
+          ++invalid;
+        }
+        film.add_sample(pixel, value);
+        if (block_ends_at(s)) film.end_block(pixel);
+        ++row_paths;
+      }
+      if (control.cancelled()) break;
+    }
+    if (rows != nullptr) rows->emplace_back(splats.splats().size(), row_paths);
+    control.done.fetch_add(row_paths, std::memory_order_relaxed);
+  }
+}
+
+// Adds the pass's splats to the film by sample index, then in tile order.
+inline void merge_tile_splats(Film& film, std::vector<TileSplats>& tiles, uint32_t first, uint32_t count,
+                              std::atomic<uint64_t>& invalid) {
+  std::vector<size_t> begin(tiles.size(), 0);
+  for (uint32_t i = 0; i < count; ++i) {
+    for (size_t tile = 0; tile < tiles.size(); ++tile) {
+      TileSplats& t = tiles[tile];
+      if (i >= t.rows.size()) continue;  // cancelled before this sample index
+      const Splat* data = t.list.splats().data();
+      film.add_splats(data + begin[tile], data + t.rows[i].first, t.rows[i].second);
+      begin[tile] = t.rows[i].first;
+    }
+    if (block_ends_at(first + i)) film.end_splat_block();
+  }
+  for (const TileSplats& t : tiles) invalid.fetch_add(t.list.invalid(), std::memory_order_relaxed);
+}
+
+// Samples per pixel of the next pass: about a quarter second so time limits and progress stay
+// responsive, and at most half the time left under a time limit, so the last pass overshoots little.
+inline uint32_t next_pass_spp(double pass_seconds, uint32_t count, double time_limit, double now) {
+  const double per_spp = std::max(pass_seconds, 1e-6) / count;
+  const double aim = time_limit > 0.0 ? std::clamp(0.5 * (time_limit - now), 1e-3, 0.25) : 0.25;
+  return static_cast<uint32_t>(std::clamp(aim / per_spp, 1.0, 4096.0));
+}
+
+// The samples every pixel got: their total, and the smallest count (the render's spp).
+inline void count_samples(const Film& film, RenderStats& stats) {
+  const std::vector<uint32_t> counts = film.sample_counts();
+  uint64_t total = 0;
+  uint32_t min_count = counts.empty() ? 0 : counts[0];
+  for (const uint32_t c : counts) {
+    total += c;
+    min_count = std::min(min_count, c);
+  }
+  stats.samples = total;
+  stats.spp = min_count;
+}
+
+}  // namespace pixel_driver_detail
+
 // estimate(x, y, sampler, counters, splats) returns the sample value for film position (x, y)
-// in pixels, adds the rays it traced (and connections it skipped) to `counters` and its light path's splats to `splats`. The film
-// position uses the sampler's first 2D sample. Each tile collects its splats in a list of its own,
-// sample index by sample index; after every pass they are added to the film by sample index, then
-// in tile order.
+// in pixels, adds the rays it traced (and connections it skipped) to `counters` and its light
+// path's splats to `splats`. The film position uses the sampler's first 2D sample. Each tile
+// collects its splats in a list of its own, sample index by sample index; after every pass they
+// are added to the film by sample index, then in tile order.
 template <class Sampler, class Estimate>
 RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderControl& control,
                          const Estimate& estimate) {
-  constexpr int kTile = 16;
+  using namespace pixel_driver_detail;
   const int w = film.width(), h = film.height();
   const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
   const size_t n_tiles = static_cast<size_t>(tiles_x) * tiles_y;
-  const uint64_t n_pixels = static_cast<uint64_t>(w) * h;
   const bool unbounded = opt.spp == 0;
-  control.total.store(unbounded ? 0 : n_pixels * opt.spp);
+  control.total.store(unbounded ? 0 : static_cast<uint64_t>(w) * h * opt.spp);
 
   SharedTraceCounters work(opt.unoccluded);
   std::atomic<uint64_t> invalid{0};
-  // Per tile: its splats, and for each sample index of the pass where they end and how many
-  // pixels (light paths) it covered.
-  struct TileSplats {
-    SplatList list;
-    std::vector<std::pair<size_t, uint32_t>> rows;
-  };
   std::vector<TileSplats> tile_splats(opt.light_paths ? n_tiles : 0);
   SplatList no_splats;  // estimators without light paths never add to it
   RenderStats stats;
   const Stopwatch elapsed;
-  const auto block_ends_at = [](uint32_t s) { return (s + 1) % kBlockSpp == 0; };
-
   uint32_t spp_done = 0;
   uint32_t pass_spp = 1;
   while ((unbounded || spp_done < opt.spp) && !control.cancelled()) {
@@ -71,62 +155,21 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     const double pass_start = elapsed();
     parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
       const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
-      const int x1 = std::min(x0 + kTile, w), y1 = std::min(y0 + kTile, h);
+      const TileRect rect{x0, y0, std::min(x0 + kTile, w), std::min(y0 + kTile, h)};
       TraceCounters local = work.local();
       uint64_t local_invalid = 0;
       SplatList& splats = opt.light_paths ? tile_splats[tile].list : no_splats;
       splats.clear();
       if (opt.light_paths) tile_splats[tile].rows.clear();
-      // Sample index by sample index, so that the tile's splats come grouped by sample index.
-      for (uint32_t s = first; s < first + count && !control.cancelled(); ++s) {
-        uint32_t row_paths = 0;
-        for (int y = y0; y < y1; ++y) {
-          for (int x = x0; x < x1; ++x) {
-            const size_t pixel = static_cast<size_t>(y) * w + x;
-            Sampler sampler(opt.seed, pixel, s);
-            const Point2 jitter = sampler.next_2d();
-            splats.begin_path();
-            Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler,
-                                   local, splats);
-            splats.end_path();
-            if (!is_finite(value)) {
-              value = Color(0.f);
-              ++local_invalid;
-            }
-            film.add_sample(pixel, value);
-            if (block_ends_at(s)) film.end_block(pixel);
-            ++row_paths;
-          }
-          if (control.cancelled()) break;
-        }
-        if (opt.light_paths) tile_splats[tile].rows.emplace_back(splats.splats().size(), row_paths);
-        control.done.fetch_add(row_paths, std::memory_order_relaxed);
-      }
+      render_tile<Sampler>(film, opt, rect, first, count, estimate, control, local, local_invalid, splats,
+                           opt.light_paths ? &tile_splats[tile].rows : nullptr);
       work.add(local);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
-    if (opt.light_paths) {
-      std::vector<size_t> begin(n_tiles, 0);
-      for (uint32_t i = 0; i < count; ++i) {
-        for (size_t tile = 0; tile < n_tiles; ++tile) {
-          TileSplats& t = tile_splats[tile];
-          if (i >= t.rows.size()) continue;  // cancelled before this sample index
-          const Splat* data = t.list.splats().data();
-          film.add_splats(data + begin[tile], data + t.rows[i].first, t.rows[i].second);
-          begin[tile] = t.rows[i].first;
-        }
-        if (block_ends_at(first + i)) film.end_splat_block();
-      }
-      for (const TileSplats& t : tile_splats) invalid.fetch_add(t.list.invalid(), std::memory_order_relaxed);
-    }
+    if (opt.light_paths) merge_tile_splats(film, tile_splats, first, count, invalid);
     if (control.cancelled()) break;
     spp_done += count;
-    // Aim for passes of about a quarter second so time limits and progress stay responsive, and
-    // at most half the time left under a time limit, so that the last pass overshoots little.
-    const double pass_seconds = std::max(elapsed() - pass_start, 1e-6);
-    const double per_spp = pass_seconds / count;
-    const double aim = opt.time_limit > 0.0 ? std::clamp(0.5 * (opt.time_limit - elapsed()), 1e-3, 0.25) : 0.25;
-    pass_spp = static_cast<uint32_t>(std::clamp(aim / per_spp, 1.0, 4096.0));
+    pass_spp = next_pass_spp(elapsed() - pass_start, count, opt.time_limit, elapsed());
   }
   film.end_blocks();  // the last block, when the render ends inside one
 
@@ -134,15 +177,7 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
   work.into(stats);
   stats.invalid_samples = invalid.load();
   stats.interrupted = control.cancelled();
-  const std::vector<uint32_t> counts = film.sample_counts();
-  uint64_t total = 0;
-  uint32_t min_count = counts.empty() ? 0 : counts[0];
-  for (const uint32_t c : counts) {
-    total += c;
-    min_count = std::min(min_count, c);
-  }
-  stats.samples = total;
-  stats.spp = min_count;
+  count_samples(film, stats);
   return stats;
 }
 

@@ -1,13 +1,13 @@
 #include "pathspace/ray_benchmark.h"
 
 #include <atomic>
-#include <chrono>
 #include <vector>
 
 #include "core/frame.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/stopwatch.h"
 
 namespace dualight {
 
@@ -36,7 +36,7 @@ RayCastStats cast_random_rays(const Scene& scene, const PinholeCamera& camera, u
   constexpr size_t kChunk = 4096;
   const size_t n_chunks = (rays.size() + kChunk - 1) / kChunk;
   std::atomic<uint64_t> hits{0};
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   parallel_for_each_index(threads, n_chunks, [&](size_t c) {
     uint64_t local = 0;
     for (size_t i = c * kChunk; i < std::min(rays.size(), (c + 1) * kChunk); ++i) {
@@ -45,7 +45,7 @@ RayCastStats cast_random_rays(const Scene& scene, const PinholeCamera& camera, u
     }
     hits.fetch_add(local, std::memory_order_relaxed);
   });
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.seconds = start();
   stats.rays = rays.size();
   stats.hits = hits.load();
   return stats;

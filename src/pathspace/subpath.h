@@ -19,6 +19,10 @@ struct WalkLimits {
   int rr_depth = 5;
 };
 
+// An rr_depth no walk reaches: no Russian roulette (beta stays recomputable from the path, and
+// a walk of a fixed strategy's length is not cut short).
+inline constexpr int kNoRussianRoulette = 1 << 30;
+
 namespace subpath_detail {
 
 // Extends `path` from its last vertex along `ray`, which was sampled with solid-angle density

@@ -1,16 +1,16 @@
 #include "radiosity/form_factors.h"
-#include "radiosity/diffuse_only.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/stopwatch.h"
+#include "radiosity/diffuse_only.h"
 
 namespace dualight {
 
@@ -134,142 +134,156 @@ double point_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3 trian
   return form_factor_to_polygon(to_d3(x), to_d3(n), poly, 3);
 }
 
-CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
-                               FormFactorStats& stats, const FormFactorRows* wanted) {
-  if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
-  require_diffuse_reflectors(patches, "radiosity form factors");
-  const std::vector<QuadraturePoint> rule = triangle_rule(options.quadrature);
-  const auto n = static_cast<uint32_t>(patches.triangle_count());
-  if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {
-    throw std::invalid_argument("scatters and receivers need one entry per patch");
+namespace {
+
+struct Corners {
+  D3 v[3];
+};
+
+struct Row {
+  std::vector<uint32_t> cols;
+  std::vector<float> vals;
+};
+
+struct RowCounters {
+  uint64_t tested = 0, facing = 0, rays = 0, skipped = 0;
+};
+
+// Row i of F: the quadrature rule over receiver patch i of exact point-to-polygon form factors
+// to each source patch j, each point's kernel times the fraction of stratified shadow rays to j
+// that arrive (none in a convex enclosure, where every facing pair sees each other).
+class RowIntegrator {
+ public:
+  RowIntegrator(const Scene& patches, const FormFactorOptions& options, bool unoccluded)
+      : patches_(patches),
+        options_(options),
+        rule_(triangle_rule(options.quadrature)),
+        unoccluded_(unoccluded),
+        sqrt_rays_(static_cast<int>(std::lround(std::sqrt(options.shadow_rays)))),
+        square_strata_(sqrt_rays_ * sqrt_rays_ == options.shadow_rays),
+        tri_(patches.triangle_count()) {
+    for (uint32_t i = 0; i < tri_.size(); ++i) {
+      for (int c = 0; c < 3; ++c) tri_[i].v[c] = to_d3(patches.vertex(i, c));
+    }
   }
-  control.total.store(n);
-  const auto start = std::chrono::steady_clock::now();
-  const bool unoccluded = options.skip_unneeded && patches.features().convex_enclosure;
 
-  struct Corners {
-    D3 v[3];
-  };
-  std::vector<Corners> tri(n);
-  for (uint32_t i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) tri[i].v[c] = to_d3(patches.vertex(i, c));
-  }
+  size_t rule_size() const { return rule_.size(); }
 
-  struct Row {
-    std::vector<uint32_t> cols;
-    std::vector<float> vals;
-  };
-  std::vector<Row> rows(n);
-  std::atomic<uint64_t> tested{0}, facing{0}, rays{0}, rays_skipped{0};
-  const int sqrt_rays = static_cast<int>(std::lround(std::sqrt(options.shadow_rays)));
-  const bool square_strata = sqrt_rays * sqrt_rays == options.shadow_rays;
-
-  const auto compute_row = [&](uint32_t i, std::vector<D3>& points, std::vector<double>& kernel, uint64_t& local_tested,
-                               uint64_t& local_facing, uint64_t& local_rays, uint64_t& local_skipped) {
-    const Corners& ti = tri[i];
-    const D3 ni = to_d3(patches.normal(i));
-    const Vec3 ni_f = patches.normal(i);
-    for (size_t k = 0; k < rule.size(); ++k) {
-      const QuadraturePoint& q = rule[k];
+  // points, kernel: the caller's workspace of rule_size() entries.
+  void compute(uint32_t i, std::vector<D3>& points, std::vector<double>& kernel, Row& row,
+               RowCounters& counters) const {
+    const Corners& ti = tri_[i];
+    const D3 ni = to_d3(patches_.normal(i));
+    for (size_t k = 0; k < rule_.size(); ++k) {
+      const QuadraturePoint& q = rule_[k];
       points[k] = {q.b0 * ti.v[0].x + q.b1 * ti.v[1].x + q.b2 * ti.v[2].x,
                    q.b0 * ti.v[0].y + q.b1 * ti.v[1].y + q.b2 * ti.v[2].y,
                    q.b0 * ti.v[0].z + q.b1 * ti.v[1].z + q.b2 * ti.v[2].z};
     }
-    Row& row = rows[i];
-    for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t j = 0; j < tri_.size(); ++j) {
       if (j == i) continue;  // a planar patch does not see itself
-      const Corners& tj = tri[j];
+      const Corners& tj = tri_[j];
       // Exact culls: the planes are shared by all points of each patch.
       if (!corner_in_front(ti.v[0], ni, tj.v)) continue;  // j behind or in i's plane
       const D3 nj = cross3(sub(tj.v[1], tj.v[0]), sub(tj.v[2], tj.v[0]));
       if (!corner_in_front(tj.v[0], nj, ti.v)) continue;  // i behind or in j's plane
-      ++local_tested;
+      ++counters.tested;
       double unoccluded_value = 0.0;
-      for (size_t k = 0; k < rule.size(); ++k) {
+      for (size_t k = 0; k < rule_.size(); ++k) {
         kernel[k] = form_factor_to_polygon(points[k], ni, tj.v, 3);
-        unoccluded_value += rule[k].weight * kernel[k];
+        unoccluded_value += rule_[k].weight * kernel[k];
       }
       if (!(unoccluded_value > 0.0)) continue;
-      ++local_facing;
-      double value = unoccluded_value;
-      if (options.shadow_rays > 0 && unoccluded) {
-        for (size_t k = 0; k < rule.size(); ++k) {
-          if (kernel[k] > 0.0) local_skipped += static_cast<uint64_t>(options.shadow_rays);
-        }
-      } else if (options.shadow_rays > 0) {
-        Pcg32 rng(hash_combine(options.seed, i), j);
-        value = 0.0;
-        for (size_t k = 0; k < rule.size(); ++k) {
-          if (!(kernel[k] > 0.0)) continue;
-          const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y),
-                       static_cast<float>(points[k].z));
-          int visible = 0;
-          for (int s = 0; s < options.shadow_rays; ++s) {
-            // Stratified points on the source triangle (a jittered grid in the unit square).
-            Point2 u{rng.next_float(), rng.next_float()};
-            if (square_strata) {
-              u = {(static_cast<float>(s % sqrt_rays) + u.u) / static_cast<float>(sqrt_rays),
-                   (static_cast<float>(s / sqrt_rays) + u.v) / static_cast<float>(sqrt_rays)};
-            } else {
-              u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options.shadow_rays);
-            }
-            const Point2 b = shadow_ray_target(u);
-            const Vec3 y = patches.vertex(j, 0) * (1.f - b.u - b.v) + patches.vertex(j, 1) * b.u +
-                           patches.vertex(j, 2) * b.v;
-            visible += patches.visible(x, ni_f, y, j) ? 1 : 0;
-          }
-          local_rays += static_cast<uint64_t>(options.shadow_rays);
-          value += rule[k].weight * kernel[k] * visible / options.shadow_rays;
-        }
-      }
-      if (value > options.min_value && value > 0.0) {
+      ++counters.facing;
+      const double value = visible_value(i, j, unoccluded_value, points, kernel, counters);
+      if (value > options_.min_value && value > 0.0) {
         row.cols.push_back(j);
         row.vals.push_back(static_cast<float>(value));
       }
     }
-  };
+  }
 
-  // The rows to compute: all, those of patches that reflect, or waves of important patches.
+ private:
+  // F_ij with visibility: the unoccluded value, or the rule's sum of kernels times visible fractions.
+  double visible_value(uint32_t i, uint32_t j, double unoccluded_value, const std::vector<D3>& points,
+                       const std::vector<double>& kernel, RowCounters& counters) const {
+    if (options_.shadow_rays <= 0) return unoccluded_value;
+    if (unoccluded_) {
+      for (size_t k = 0; k < rule_.size(); ++k) {
+        if (kernel[k] > 0.0) counters.skipped += static_cast<uint64_t>(options_.shadow_rays);
+      }
+      return unoccluded_value;
+    }
+    Pcg32 rng(hash_combine(options_.seed, i), j);
+    double value = 0.0;
+    for (size_t k = 0; k < rule_.size(); ++k) {
+      if (!(kernel[k] > 0.0)) continue;
+      const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y), static_cast<float>(points[k].z));
+      const int visible = visible_rays(x, patches_.normal(i), j, rng);
+      counters.rays += static_cast<uint64_t>(options_.shadow_rays);
+      value += rule_[k].weight * kernel[k] * visible / options_.shadow_rays;
+    }
+    return value;
+  }
+
+  // How many of shadow_rays stratified points on source j (a jittered grid in the unit square)
+  // x, on a receiver with normal n, sees.
+  int visible_rays(const Vec3& x, const Vec3& n, uint32_t j, Pcg32& rng) const {
+    int visible = 0;
+    for (int s = 0; s < options_.shadow_rays; ++s) {
+      Point2 u{rng.next_float(), rng.next_float()};
+      if (square_strata_) {
+        u = {(static_cast<float>(s % sqrt_rays_) + u.u) / static_cast<float>(sqrt_rays_),
+             (static_cast<float>(s / sqrt_rays_) + u.v) / static_cast<float>(sqrt_rays_)};
+      } else {
+        u.u = (static_cast<float>(s) + u.u) / static_cast<float>(options_.shadow_rays);
+      }
+      const Point2 b = shadow_ray_target(u);
+      const Vec3 y =
+          patches_.vertex(j, 0) * (1.f - b.u - b.v) + patches_.vertex(j, 1) * b.u + patches_.vertex(j, 2) * b.v;
+      visible += patches_.visible(x, n, y, j) ? 1 : 0;
+    }
+    return visible;
+  }
+
+  const Scene& patches_;
+  const FormFactorOptions& options_;
+  const std::vector<QuadraturePoint>& rule_;
+  bool unoccluded_;
+  int sqrt_rays_;
+  bool square_strata_;
+  std::vector<Corners> tri_;
+};
+
+// The first rows to compute: all, or those of patches that reflect and (when given) receive.
+std::vector<uint32_t> first_rows(uint32_t n, const FormFactorRows* wanted) {
   std::vector<uint32_t> todo;
-  std::vector<uint8_t> important;
   for (uint32_t i = 0; i < n; ++i) {
     const bool scatters = !wanted || wanted->scatters[i];
     const bool receives = !wanted || wanted->receivers.empty() || wanted->receivers[i];
     if (scatters && receives) todo.push_back(i);
   }
-  if (wanted && !wanted->receivers.empty()) important = wanted->receivers;
-  uint64_t computed = 0;
-  constexpr size_t kRowsPerTask = 16;
-  while (!todo.empty() && !control.cancelled()) {
-    parallel_for_each_index(options.threads, (todo.size() + kRowsPerTask - 1) / kRowsPerTask, [&](size_t task) {
-      uint64_t local_tested = 0, local_facing = 0, local_rays = 0, local_skipped = 0;
-      std::vector<D3> points(rule.size());
-      std::vector<double> kernel(rule.size());
-      for (size_t r = task * kRowsPerTask; r < std::min(todo.size(), (task + 1) * kRowsPerTask) && !control.cancelled();
-           ++r) {
-        compute_row(todo[r], points, kernel, local_tested, local_facing, local_rays, local_skipped);
-        control.done.fetch_add(1, std::memory_order_relaxed);
-      }
-      tested.fetch_add(local_tested);
-      facing.fetch_add(local_facing);
-      rays.fetch_add(local_rays);
-      rays_skipped.fetch_add(local_skipped);
-    });
-    computed += todo.size();
-    if (important.empty()) break;
-    // The next wave: patches first seen from this one's rows that reflect (in row order, so
-    // the waves do not depend on the schedule).
-    std::vector<uint32_t> next;
-    for (const uint32_t i : todo) {
-      for (const uint32_t j : rows[i].cols) {
-        if (important[j]) continue;
-        important[j] = 1;
-        if (wanted->scatters[j]) next.push_back(j);
-      }
-    }
-    todo = std::move(next);
-  }
+  return todo;
+}
 
+// The next wave of view-only rows: patches first seen from this wave's rows that reflect (in
+// row order, so the waves do not depend on the schedule); marks them important.
+std::vector<uint32_t> next_wave(const std::vector<uint32_t>& todo, const std::vector<Row>& rows,
+                                const FormFactorRows& wanted, std::vector<uint8_t>& important) {
+  std::vector<uint32_t> next;
+  for (const uint32_t i : todo) {
+    for (const uint32_t j : rows[i].cols) {
+      if (important[j]) continue;
+      important[j] = 1;
+      if (wanted.scatters[j]) next.push_back(j);
+    }
+  }
+  return next;
+}
+
+// The rows as one CSR matrix, freeing each row as it goes (rows can be large).
+CsrMatrix to_csr(std::vector<Row>& rows) {
+  const auto n = static_cast<uint32_t>(rows.size());
   CsrMatrix F;
   F.n = n;
   F.indptr.assign(n + 1, 0);
@@ -279,15 +293,58 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
   for (Row& r : rows) {
     F.indices.insert(F.indices.end(), r.cols.begin(), r.cols.end());
     F.values.insert(F.values.end(), r.vals.begin(), r.vals.end());
-    r = Row{};  // free as we go: rows can be large
+    r = Row{};
   }
+  return F;
+}
+
+}  // namespace
+
+CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& options, RenderControl& control,
+                               FormFactorStats& stats, const FormFactorRows* wanted) {
+  if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
+  require_diffuse_reflectors(patches, "radiosity form factors");
+  const auto n = static_cast<uint32_t>(patches.triangle_count());
+  if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {
+    throw std::invalid_argument("scatters and receivers need one entry per patch");
+  }
+  const RowIntegrator integrator(patches, options, options.skip_unneeded && patches.features().convex_enclosure);
+  control.total.store(n);
+  const Stopwatch start;
+  std::vector<Row> rows(n);
+  std::atomic<uint64_t> tested{0}, facing{0}, rays{0}, rays_skipped{0};
+  std::vector<uint32_t> todo = first_rows(n, wanted);
+  std::vector<uint8_t> important;
+  if (wanted && !wanted->receivers.empty()) important = wanted->receivers;
+  uint64_t computed = 0;
+  constexpr size_t kRowsPerTask = 16;
+  while (!todo.empty() && !control.cancelled()) {
+    parallel_for_each_index(options.threads, (todo.size() + kRowsPerTask - 1) / kRowsPerTask, [&](size_t task) {
+      RowCounters local;
+      std::vector<D3> points(integrator.rule_size());
+      std::vector<double> kernel(integrator.rule_size());
+      for (size_t r = task * kRowsPerTask; r < std::min(todo.size(), (task + 1) * kRowsPerTask) && !control.cancelled();
+           ++r) {
+        integrator.compute(todo[r], points, kernel, rows[todo[r]], local);
+        control.done.fetch_add(1, std::memory_order_relaxed);
+      }
+      tested.fetch_add(local.tested);
+      facing.fetch_add(local.facing);
+      rays.fetch_add(local.rays);
+      rays_skipped.fetch_add(local.skipped);
+    });
+    computed += todo.size();
+    if (important.empty()) break;
+    todo = next_wave(todo, rows, *wanted, important);
+  }
+  CsrMatrix F = to_csr(rows);
   stats.pairs_tested = tested.load();
   stats.pairs_facing = facing.load();
   stats.rays = rays.load();
   stats.rays_skipped = rays_skipped.load();
   stats.rows_computed = computed;
   stats.important = important.empty() ? n : static_cast<uint64_t>(std::count(important.begin(), important.end(), 1));
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.seconds = start();
   stats.interrupted = control.cancelled();
   if (!stats.interrupted) control.done.store(n);
   return F;

@@ -1,9 +1,7 @@
 #include "radiosity/hierarchical.h"
-#include "radiosity/diffuse_only.h"
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -11,13 +9,13 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/stopwatch.h"
+#include "radiosity/diffuse_only.h"
 #include "radiosity/form_factors.h"
 
 namespace dualight {
 
 namespace {
-
-constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
 
 Vec3 midpoint(const Vec3& a, const Vec3& b) { return (a + b) * 0.5f; }
 
@@ -57,8 +55,9 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     for (int c = 0; c < 3; ++c) {
       e.rho[c] = rho[c];
       e.E[c] = kPi * Le[c];  // emitted radiosity
-      emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminance[0] + e.E[1] * kLuminance[1] +
-                                                                   e.E[2] * kLuminance[2]);
+      emitted_radiosity_max_ =
+          std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] + e.E[1] * kLuminanceWeights[1] +
+                                               e.E[2] * kLuminanceWeights[2]);
     }
     largest = std::max(largest, e.area);
     elements_.push_back(e);
@@ -226,96 +225,100 @@ void HierarchicalSolver::push_pull_importance(uint32_t e, const double down[3]) 
   for (int c = 0; c < 3; ++c) again.W[c] = sum[c] / again.area;
 }
 
-HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
-  const auto t0 = std::chrono::steady_clock::now();
-  HierarchicalStep st;
-  const uint64_t rays_before = rays_, skipped_before = rays_skipped_;
-
-  // Refine (from the second step on: the oracles need a solution).
-  if (iteration_ > 0) {
-    double primal[3], dual[3];
-    measurements(primal, dual);
-    const double measurement = primal[0] + primal[1] + primal[2];
-    std::vector<uint32_t> to_refine;
-    for (uint32_t l = 0; l < links_.size(); ++l) {
-      const Link& link = links_[l];
-      const Element& r = elements_[link.receiver];
-      const Element& s = elements_[link.source];
-      // Both directional form factors, as in [HSA91]: a small source next to a large receiver
-      // has a small F_ij but makes the receiver's irradiance vary strongly across it (F_ji is
-      // large), which averaging over the receiver would miss.
-      // A partly visible link (a shadow boundary crosses it) is judged by its unoccluded form
-      // factor: its visibility varies across the elements, and sampling the source uniformly
-      // by area misses how that variation correlates with the kernel [HSA91, SAS92].
-      const bool partial = link.F_oracle > 0.f && link.F_oracle < 0.999f * link.F_unoccluded;
-      const double F_judged = partial ? link.F_unoccluded : link.F_oracle;
-      const double F_max = std::max<double>(F_judged, F_judged * r.area / s.area);
-      double q = 0.0, threshold = 0.0;
-      if (options_.oracle == RefinementOracle::BF) {
-        // Bound on the radiosity error this link leaves at the receiver's points.
-        for (int c = 0; c < 3; ++c) q += kLuminance[c] * F_max * s.B[c];
-        threshold = options_.epsilon * emitted_radiosity_max_;
-      } else {
-        // That error weighted by how much the receiver matters for the view, plus the importance
-        // error it leaves at the source weighted by the source's radiosity [SAS92]: both are
-        // F_max * rho_i * W_i * B_j times an area.
-        for (int c = 0; c < 3; ++c) q += F_max * r.rho[c] * r.W[c] * s.B[c] * std::max(r.area, s.area);
-        threshold = options_.epsilon * measurement;
-      }
-      if (q > threshold && std::max(r.area, s.area) / 4.0 >= options_.min_area) to_refine.push_back(l);
+// The links the oracle flags for refinement [HSA91 sec. 4; SAS92 sec. 4]: their error bound
+// (BF) or their error weighted by importance exceeds epsilon times the brightest emission or
+// the measurement, and their larger element can still be split.
+std::vector<uint32_t> HierarchicalSolver::flag_links() const {
+  double primal[3], dual[3];
+  measurements(primal, dual);
+  const double measurement = primal[0] + primal[1] + primal[2];
+  std::vector<uint32_t> to_refine;
+  for (uint32_t l = 0; l < links_.size(); ++l) {
+    const Link& link = links_[l];
+    const Element& r = elements_[link.receiver];
+    const Element& s = elements_[link.source];
+    // Both directional form factors, as in [HSA91]: a small source next to a large receiver
+    // has a small F_ij but makes the receiver's irradiance vary strongly across it (F_ji is
+    // large), which averaging over the receiver would miss.
+    // A partly visible link (a shadow boundary crosses it) is judged by its unoccluded form
+    // factor: its visibility varies across the elements, and sampling the source uniformly
+    // by area misses how that variation correlates with the kernel [HSA91, SAS92].
+    const bool partial = link.F_oracle > 0.f && link.F_oracle < 0.999f * link.F_unoccluded;
+    const double F_judged = partial ? link.F_unoccluded : link.F_oracle;
+    const double F_max = std::max<double>(F_judged, F_judged * r.area / s.area);
+    double q = 0.0, threshold = 0.0;
+    if (options_.oracle == RefinementOracle::BF) {
+      // Bound on the radiosity error this link leaves at the receiver's points.
+      for (int c = 0; c < 3; ++c) q += kLuminanceWeights[c] * F_max * s.B[c];
+      threshold = options_.epsilon * emitted_radiosity_max_;
+    } else {
+      // That error weighted by how much the receiver matters for the view, plus the importance
+      // error it leaves at the source weighted by the source's radiosity [SAS92]: both are
+      // F_max * rho_i * W_i * B_j times an area.
+      for (int c = 0; c < 3; ++c) q += F_max * r.rho[c] * r.W[c] * s.B[c] * std::max(r.area, s.area);
+      threshold = options_.epsilon * measurement;
     }
-    // Each refinement adds three links: stop before max_links (BF in a scene where everything
-    // emits would otherwise refine until memory runs out).
-    const uint64_t room = options_.max_links > links_.size() ? (options_.max_links - links_.size()) / 3 : 0;
-    if (to_refine.size() > room) {
-      to_refine.resize(room);
-      st.link_limit = true;
-    }
-    // Split the larger end of each flagged link, then link its children in its place.
-    std::vector<Link> kept;
-    std::vector<std::pair<uint32_t, uint32_t>> pending;  // (receiver, source) of new links
-    std::vector<char> refine(links_.size(), 0);
-    for (const uint32_t l : to_refine) refine[l] = 1;
-    for (uint32_t l = 0; l < links_.size(); ++l) {
-      const Link link = links_[l];
-      if (!refine[l]) {
-        kept.push_back(link);
-        continue;
-      }
-      const bool split_receiver = elements_[link.receiver].area >= elements_[link.source].area;
-      const uint32_t split = split_receiver ? link.receiver : link.source;
-      subdivide(split);
-      const uint32_t first = static_cast<uint32_t>(elements_[split].first_child);
-      for (uint32_t k = 0; k < 4; ++k) {
-        pending.emplace_back(split_receiver ? first + k : link.receiver, split_receiver ? link.source : first + k);
-      }
-    }
-    std::vector<Link> created(pending.size());
-    std::atomic<uint64_t> rays{0}, skipped{0};
-    constexpr size_t kChunk = 256;
-    parallel_for_each_index(options_.threads, (pending.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
-      uint64_t local = 0, local_skipped = 0;
-      for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
-        const auto [r, s] = pending[k];
-        created[k] =
-            facing(elements_[r], elements_[s]) ? make_link(r, s, local, local_skipped) : Link{r, s, 0.f, 0.f, 0.f};
-      }
-      rays.fetch_add(local);
-      skipped.fetch_add(local_skipped);
-    });
-    rays_ += rays.load();
-    rays_skipped_ += skipped.load();
-    for (const Link& l : created) {
-      // A link the oracle sees as occluded is never refined: dropping it when the transport
-      // estimate is 0 too loses nothing.
-      if (l.F > 0.f || l.F_oracle > 0.f) kept.push_back(l);
-    }
-    links_.swap(kept);
-    st.links_refined = to_refine.size();
-    if (!to_refine.empty()) assign_receiver();
+    if (q > threshold && std::max(r.area, s.area) / 4.0 >= options_.min_area) to_refine.push_back(l);
   }
+  return to_refine;
+}
 
-  // Solve both systems on the current links: gather, push-pull, repeat.
+// Splits the larger end of each flagged link (at most max_links / 3 of them) and links its
+// children in its place; fills st.links_refined and st.link_limit.
+void HierarchicalSolver::refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st) {
+  // Each refinement adds three links: stop before max_links (BF in a scene where everything
+  // emits would otherwise refine until memory runs out).
+  const uint64_t room = options_.max_links > links_.size() ? (options_.max_links - links_.size()) / 3 : 0;
+  if (to_refine.size() > room) {
+    to_refine.resize(room);
+    st.link_limit = true;
+  }
+  // Split the larger end of each flagged link, then link its children in its place.
+  std::vector<Link> kept;
+  std::vector<std::pair<uint32_t, uint32_t>> pending;  // (receiver, source) of new links
+  std::vector<char> refine(links_.size(), 0);
+  for (const uint32_t l : to_refine) refine[l] = 1;
+  for (uint32_t l = 0; l < links_.size(); ++l) {
+    const Link link = links_[l];
+    if (!refine[l]) {
+      kept.push_back(link);
+      continue;
+    }
+    const bool split_receiver = elements_[link.receiver].area >= elements_[link.source].area;
+    const uint32_t split = split_receiver ? link.receiver : link.source;
+    subdivide(split);
+    const uint32_t first = static_cast<uint32_t>(elements_[split].first_child);
+    for (uint32_t k = 0; k < 4; ++k) {
+      pending.emplace_back(split_receiver ? first + k : link.receiver, split_receiver ? link.source : first + k);
+    }
+  }
+  std::vector<Link> created(pending.size());
+  std::atomic<uint64_t> rays{0}, skipped{0};
+  constexpr size_t kChunk = 256;
+  parallel_for_each_index(options_.threads, (pending.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
+    uint64_t local = 0, local_skipped = 0;
+    for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
+      const auto [r, s] = pending[k];
+      created[k] =
+          facing(elements_[r], elements_[s]) ? make_link(r, s, local, local_skipped) : Link{r, s, 0.f, 0.f, 0.f};
+    }
+    rays.fetch_add(local);
+    skipped.fetch_add(local_skipped);
+  });
+  rays_ += rays.load();
+  rays_skipped_ += skipped.load();
+  for (const Link& l : created) {
+    // A link the oracle sees as occluded is never refined: dropping it when the transport
+    // estimate is 0 too loses nothing.
+    if (l.F > 0.f || l.F_oracle > 0.f) kept.push_back(l);
+  }
+  links_.swap(kept);
+  st.links_refined = to_refine.size();
+}
+
+// Gathers both systems on the current links and pushes and pulls them through the trees,
+// sweep after sweep until the change is within tolerance; returns the last change.
+double HierarchicalSolver::solve_links(RenderControl* control) {
   const size_t n_links = links_.size();
   std::vector<uint32_t> by_receiver(n_links), by_source(n_links);
   for (size_t l = 0; l < n_links; ++l) {
@@ -362,6 +365,20 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
     if (change <= options_.tolerance) break;
   }
 
+  return change;
+}
+
+HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
+  const Stopwatch t0;
+  HierarchicalStep st;
+  const uint64_t rays_before = rays_, skipped_before = rays_skipped_;
+  // Refine (from the second step on: the oracles need a solution).
+  if (iteration_ > 0) {
+    refine_links(flag_links(), st);
+    if (st.links_refined > 0) assign_receiver();
+  }
+  const double change = solve_links(control);
+
   ++iteration_;
   st.iteration = iteration_;
   st.elements = elements_.size();
@@ -373,7 +390,7 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   st.memory_bytes = elements_.size() * sizeof(Element) + links_.capacity() * sizeof(Link);
   st.residual = change;
   st.converged = iteration_ > 1 && st.links_refined == 0 && !st.link_limit;
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  st.seconds = t0();
   return st;
 }
 

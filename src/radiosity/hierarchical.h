@@ -110,8 +110,10 @@ class HierarchicalSolver {
   Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays, uint64_t& rays_skipped) const;
   bool facing(const Element& a, const Element& b) const;
   void subdivide(uint32_t e);
-  void gather_sweep_radiosity();
-  void gather_sweep_importance();
+  // The three parts of a step: the oracle's flags, the refinement, the solve of both systems.
+  std::vector<uint32_t> flag_links() const;
+  void refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st);
+  double solve_links(RenderControl* control);
   void push_pull_radiosity(uint32_t e, const double down[3]);
   void push_pull_importance(uint32_t e, const double down[3]);
   double leaf_change(const std::vector<double>& before) const;

@@ -2,8 +2,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
-#include <chrono>
 #include <string>
+
+#include "core/stopwatch.h"
 
 namespace dualight {
 
@@ -20,7 +21,7 @@ DirectSolver::DirectSolver(std::shared_ptr<const RadiositySystem> system, int th
                                 "; use an iterative method");
   }
   if (threads > 0) Eigen::setNbThreads(threads);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   const CsrMatrix& F = system_->matrices->F;
   Eigen::MatrixXd M(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   for (int c = 0; c < 3; ++c) {
@@ -31,7 +32,7 @@ DirectSolver::DirectSolver(std::shared_ptr<const RadiositySystem> system, int th
     }
     factors_->lu[c].compute(M);
   }
-  factor_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  factor_seconds_ = t0();
 }
 
 DirectSolver::~DirectSolver() = default;

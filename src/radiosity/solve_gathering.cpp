@@ -1,15 +1,13 @@
 #include "radiosity/solve_gathering.h"
 
-#include <chrono>
+#include <stdexcept>
 
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 
 namespace dualight {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 void check_rhs(const RadiositySystem& s, const std::vector<double>& b) {
   if (b.size() != 3 * s.size()) throw std::invalid_argument("right-hand side must be n x 3");
 }
@@ -24,7 +22,7 @@ JacobiSolver::JacobiSolver(std::shared_ptr<const RadiositySystem> system, System
 }
 
 SolverStep JacobiSolver::step() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   const uint32_t n = static_cast<uint32_t>(system_->size());
   constexpr uint32_t kChunk = 256;
   // Rows are independent within a sweep: parallel, and the same result for any thread count.
@@ -37,7 +35,7 @@ SolverStep JacobiSolver::step() {
   });
   x_.swap(next_);
   residual_ = system_->relative_residual(side_, x_, b_, threads_);
-  return {++iteration_, residual_, seconds_since(t0)};
+  return {++iteration_, residual_, t0()};
 }
 
 GaussSeidelSolver::GaussSeidelSolver(std::shared_ptr<const RadiositySystem> system, SystemSide side,
@@ -48,7 +46,7 @@ GaussSeidelSolver::GaussSeidelSolver(std::shared_ptr<const RadiositySystem> syst
 }
 
 SolverStep GaussSeidelSolver::step() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   const uint32_t n = static_cast<uint32_t>(system_->size());
   for (uint32_t i = 0; i < n; ++i) {
     double kx[3];
@@ -56,7 +54,7 @@ SolverStep GaussSeidelSolver::step() {
     for (int c = 0; c < 3; ++c) x_[3 * i + c] = b_[3 * i + c] + kx[c];
   }
   residual_ = system_->relative_residual(side_, x_, b_);
-  return {++iteration_, residual_, seconds_since(t0)};
+  return {++iteration_, residual_, t0()};
 }
 
 }  // namespace dualight

@@ -1,6 +1,8 @@
 #include "radiosity/solve_shooting.h"
 
-#include <chrono>
+#include <stdexcept>
+
+#include "core/stopwatch.h"
 
 namespace dualight {
 
@@ -20,7 +22,7 @@ double SouthwellSolver::priority(uint32_t i) const {
 }
 
 SolverStep SouthwellSolver::step() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch t0;
   const uint32_t n = static_cast<uint32_t>(system_->size());
   const CsrMatrix& F = system_->matrices->F;
   const CsrMatrix& Ft = system_->matrices->Ft;
@@ -57,7 +59,7 @@ SolverStep SouthwellSolver::step() {
     }
     ++shots_;
   }
-  return {++iteration_, residual(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+  return {++iteration_, residual(), t0()};
 }
 
 double SouthwellSolver::residual() const {
