@@ -1,5 +1,6 @@
 #include "geometry/scene.h"
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -7,7 +8,7 @@
 namespace dualight {
 
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
-             std::vector<Material> materials)
+             std::vector<Material> materials, std::vector<Emitter> emitters)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
       material_of_(std::move(material_of)),
@@ -56,6 +57,14 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
                                       prim, Le});
     }
   }
+  const size_t emitter_triangles = emitters_.size();
+  for (Emitter& e : emitters) {
+    if (has_any(flags(e), EmitterFlags::Surface)) {
+      throw std::invalid_argument("surface emitters come from the materials' emission, not the emitter list");
+    }
+    if (!(power(e) >= 0.0) || !std::isfinite(power(e))) throw std::invalid_argument("emitter power must be finite");
+    emitters_.push_back(std::move(e));
+  }
   emitter_sampler_ = PowerEmitterSampler(emitters_);
   bool specular = false, transmission = false, all_diffuse = true;
   for (const uint32_t m : material_of_) {
@@ -65,7 +74,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     all_diffuse = all_diffuse && is_diffuse_reflector(f);
   }
   features_ = compute_scene_features(positions_, triangles_, normal_, {specular, transmission, all_diffuse},
-                                     emitters_.size());
+                                     emitter_triangles);
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 

@@ -38,11 +38,12 @@ struct EmitterChoice {
 
 class Scene {
  public:
-  // positions: xyz per vertex; triangles: 3 vertex indices each; material_of: index per triangle.
-  // Throws std::invalid_argument on any malformed input (the Python layer validates first, so
-  // these checks guard the C++ API itself).
+  // positions: xyz per vertex; triangles: 3 vertex indices each; material_of: index per triangle;
+  // emitters: those not on the triangles (every emissive triangle is an AreaEmitter already),
+  // kept after the area emitters. Throws std::invalid_argument on any malformed input (the
+  // Python layer validates first, so these checks guard the C++ API itself).
   Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
-        std::vector<Material> materials);
+        std::vector<Material> materials, std::vector<Emitter> emitters = {});
 
   size_t triangle_count() const { return area_.size(); }
   Vec3 vertex(uint32_t prim, int corner) const {

@@ -27,8 +27,9 @@ struct AreaEmitter {
 // A point on an emitter, with its area density (selection included).
 struct EmitterPoint {
   Vec3 p, n;
-  float pdf_a = 0.f;
-  uint32_t prim = 0;  // the scene triangle it lies on
+  float pdf_a = 0.f;     // area density, or the probability of a point emitter's point
+  uint32_t prim = 0;     // the scene triangle it lies on (when on_surface)
+  bool on_surface = true;  // false: a point in free space (no cosine, no material there)
 };
 // A direction of emission from an emitter point.
 struct EmitterDirection {
@@ -42,8 +43,9 @@ struct LightSample {
   Vec3 wi;            // unit, from the reference point towards p
   float dist2 = 0.f;  // squared distance to p
   float pdf_w = 0.f;  // solid-angle density at the reference point (selection included)
-  Color Le;           // radiance arriving from p
-  uint32_t prim = 0;  // the emitting triangle (the shadow ray's target)
+  Color Le;                // radiance arriving from p
+  uint32_t prim = 0;       // the emitting triangle (the shadow ray's target), when on_surface
+  bool on_surface = true;  // false: p is in free space (the shadow ray ends at p)
 };
 
 constexpr EmitterFlags flags(const AreaEmitter&) { return EmitterFlags::Surface; }

@@ -37,7 +37,7 @@ inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, 
   const Vec3 w = d / std::sqrt(dist2);
   const Color f = qs.type == VertexType::Light ? emitted_towards(qs, camera.origin())
                                                : scattering(qs, camera.origin(), TransportMode::Importance);
-  const Color L = qs.beta * f * (camera.importance(-w) * std::abs(dot(qs.n, w)) / dist2);
+  const Color L = qs.beta * f * (camera.importance(-w) * abs_cos(qs, w) / dist2);
   if (is_black(L)) {
     ++counters.skipped_connections;
     return L;
@@ -74,14 +74,16 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   const float dist2 = dot(d, d);
   if (!(dist2 > 0.f)) return Color(0.f);
   const Vec3 w = d / std::sqrt(dist2);
-  const float G = std::abs(dot(pt.n, w)) * std::abs(dot(qs.n, w)) / dist2;
+  const float G = std::abs(dot(pt.n, w)) * abs_cos(qs, w) / dist2;
   const Color fq = s == 1 ? emitted_towards(qs, pt.p) : scattering(qs, pt.p, TransportMode::Importance);
   const Color L = qs.beta * fq * pt.beta * scattering(pt, qs.p, TransportMode::Radiance) * G;
   if (is_black(L)) {
     ++counters.skipped_connections;
     return L;
   }
-  return shadow_ray_visible(scene, pt.p, pt.n, qs.p, qs.prim, counters) ? L : Color(0.f);
+  const bool visible = qs.on_surface() ? shadow_ray_visible(scene, pt.p, pt.n, qs.p, qs.prim, counters)
+                                       : shadow_ray_visible_point(scene, pt.p, pt.n, qs.p, counters);
+  return visible ? L : Color(0.f);
 }
 
 }  // namespace dualight

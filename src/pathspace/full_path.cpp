@@ -98,8 +98,9 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
 }
 
 bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
-  if (b.type == VertexType::Camera) return shadow_ray_visible_point(scene, a.p, a.n, b.p, counters);
-  if (a.type == VertexType::Camera) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
+  // A point with no surface (the camera, a point emitter) is aimed at itself.
+  if (!b.on_surface()) return shadow_ray_visible_point(scene, a.p, a.n, b.p, counters);
+  if (!a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
   return shadow_ray_visible(scene, a.p, a.n, b.p, b.prim, counters);
 }
 

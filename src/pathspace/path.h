@@ -31,11 +31,25 @@ struct Vertex {
   Color beta;
   float pdf_fwd = 0.f, pdf_rev = 0.f;
   bool delta = false;
+  bool at_point = false;  // a light vertex of an emitter that is a point in free space
 
-  bool on_surface() const { return type != VertexType::Camera; }
+  // Has a surface (a normal whose cosine enters geometry terms): not the pinhole camera, not a
+  // point emitter.
+  bool on_surface() const { return type != VertexType::Camera && !at_point; }
   bool is_emitter() const { return emitter != nullptr; }
-  // A connection (shadow ray) can end here: not at a delta BSDF.
-  bool connectible() const { return type != VertexType::Surface || !is_delta(material->bsdf); }
+  // A connection (shadow ray) can end here: not at a delta BSDF, nor at an emitter whose
+  // direction is a delta (only its one direction carries light).
+  bool connectible() const {
+    switch (type) {
+      case VertexType::Surface:
+        return !is_delta(material->bsdf);
+      case VertexType::Light:
+        return emitter == nullptr || !is_delta_direction(*emitter);
+      case VertexType::Camera:
+        break;
+    }
+    return true;
+  }
 };
 
 using Path = std::vector<Vertex>;
@@ -50,8 +64,9 @@ inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
   v.p = y.p;
   v.n = y.n;
   v.prim = y.prim;
-  v.material = &scene.material(v.prim);
+  v.material = y.on_surface ? &scene.material(v.prim) : nullptr;
   v.emitter = choice.emitter;
+  v.at_point = !y.on_surface;
   v.beta = Color(1.f / y.pdf_a);
   v.pdf_fwd = y.pdf_a;
   return v;
@@ -65,6 +80,9 @@ inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& 
   if (to.on_surface()) pdf *= std::abs(dot(to.n, d)) * std::sqrt(inv_dist2);
   return pdf;
 }
+
+// |cos| between v's normal and unit w, or 1 where v has no surface (camera, point emitter).
+inline float abs_cos(const Vertex& v, const Vec3& w) { return v.on_surface() ? std::abs(dot(v.n, w)) : 1.f; }
 
 // Radiance vertex v emits towards `to` (0 when v is on no emitter).
 inline Color emitted_towards(const Vertex& v, const Vec3& to) {

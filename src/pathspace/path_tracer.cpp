@@ -38,7 +38,9 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Frame& 
     ++counters.skipped_connections;
     return Color(0.f);
   }
-  if (!shadow_ray_visible(scene, hit.p, hit.n, ls.p, ls.prim, counters)) return Color(0.f);
+  const bool visible = ls.on_surface ? shadow_ray_visible(scene, hit.p, hit.n, ls.p, ls.prim, counters)
+                                     : shadow_ray_visible_point(scene, hit.p, hit.n, ls.p, counters);
+  if (!visible) return Color(0.f);
   const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
   const float weight = power_heuristic(ls.pdf_w, pdf_bsdf_w);
   return beta * f * ls.Le * (std::abs(wi.z) * weight / ls.pdf_w);
