@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 # libllvm19: Mitsuba 3.9's llvm_ad_rgb variant (a reference renderer in tests and benchmarks) needs LLVM >= 16.
 PACKAGES=(g++ make cmake pkg-config python3-venv python3-dev
-          libembree-dev libtbb-dev libeigen3-dev libopenimageio-dev libllvm19)
+          libembree-dev libtbb-dev libeigen3-dev libopenimageio-dev libllvm19 doctest-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,38 +1,9 @@
-// A minimal test harness: CHECK records failures with file and line; main() reports them.
+// The C++ unit tests' one include: doctest (TEST_CASE, CHECK, ...) and CHECK_NEAR, the absolute
+// tolerance check the tests are written in (|a - b| <= tol, the values shown when it fails).
+// ctest runs each TEST_CASE as its own test (doctest_discover_tests in CMakeLists.txt).
 #pragma once
-#include <cstdio>
-#include <functional>
-#include <string>
-#include <vector>
+#include <cmath>
 
-namespace dualight::test {
-
-struct Registry {
-  std::vector<std::pair<std::string, std::function<void()>>> tests;
-  int failures = 0;
-  static Registry& get() {
-    static Registry r;
-    return r;
-  }
-};
-
-struct Register {
-  Register(const char* name, std::function<void()> f) { Registry::get().tests.emplace_back(name, std::move(f)); }
-};
-
-}  // namespace dualight::test
-
-#define TEST_CASE(name)                                                               \
-  static void name();                                                                 \
-  static const dualight::test::Register register_##name(#name, name);                 \
-  static void name()
-
-#define CHECK(cond)                                                                   \
-  do {                                                                                \
-    if (!(cond)) {                                                                    \
-      std::printf("  %s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);         \
-      ++dualight::test::Registry::get().failures;                                     \
-    }                                                                                 \
-  } while (0)
+#include <doctest/doctest.h>
 
 #define CHECK_NEAR(a, b, tol) CHECK(std::abs((a) - (b)) <= (tol))

@@ -20,7 +20,7 @@ Vec3 direction(float cos_theta, float phi) {
 
 }  // namespace
 
-TEST_CASE(fresnel_at_normal_incidence_from_both_sides) {
+TEST_CASE("fresnel_at_normal_incidence_from_both_sides") {
   for (const float eta : kEtas) {
     const float r0 = ((eta - 1.f) / (eta + 1.f)) * ((eta - 1.f) / (eta + 1.f));
     const Fresnel out = fresnel_dielectric(1.f, eta), in = fresnel_dielectric(-1.f, eta);
@@ -32,7 +32,7 @@ TEST_CASE(fresnel_at_normal_incidence_from_both_sides) {
   }
 }
 
-TEST_CASE(fresnel_is_total_beyond_the_critical_angle) {
+TEST_CASE("fresnel_is_total_beyond_the_critical_angle") {
   // TIR on the side with the higher index: the interior when eta > 1, the exterior when eta < 1.
   for (const float eta : kEtas) {
     const float n_dense_over_thin = eta > 1.f ? eta : 1.f / eta;
@@ -52,7 +52,7 @@ TEST_CASE(fresnel_is_total_beyond_the_critical_angle) {
   }
 }
 
-TEST_CASE(fresnel_is_continuous_and_in_the_unit_interval) {
+TEST_CASE("fresnel_is_continuous_and_in_the_unit_interval") {
   // R(cos_i) on [-1, 1]: bounded, and its largest step shrinks as the grid is refined: near
   // the critical angle R approaches 1 like a square root, so a 100x finer grid has about 10x
   // smaller steps, where a jump would keep its size.
@@ -80,7 +80,7 @@ TEST_CASE(fresnel_is_continuous_and_in_the_unit_interval) {
   }
 }
 
-TEST_CASE(fresnel_is_reciprocal_across_the_interface) {
+TEST_CASE("fresnel_is_reciprocal_across_the_interface") {
   // Light refracted from theta_i outside to theta_t inside: reflectance is the same for the
   // reverse path arriving from inside at theta_t. Up to 85 degrees: closer to grazing, float
   // rounding of cos_t (from 1 - sin^2) moves the steep R by more than the tolerance.
@@ -97,7 +97,7 @@ TEST_CASE(fresnel_is_reciprocal_across_the_interface) {
   }
 }
 
-TEST_CASE(dielectric_sampling_follows_reflection_and_snell) {
+TEST_CASE("dielectric_sampling_follows_reflection_and_snell") {
   for (const float eta : kEtas) {
     const Bsdf glass = Dielectric{eta};
     for (int k = 0; k < 40; ++k) {
@@ -106,7 +106,7 @@ TEST_CASE(dielectric_sampling_follows_reflection_and_snell) {
       const Fresnel F = fresnel_dielectric(wo.z, eta);
       BsdfSample r, t;
       CHECK(sample(glass, wo, {0.f, 0.5f}, TransportMode::Radiance, r));  // u < R: reflection
-      CHECK(r.delta && r.wi.x == -wo.x && r.wi.y == -wo.y && r.wi.z == wo.z);
+      CHECK((r.delta && r.wi.x == -wo.x && r.wi.y == -wo.y && r.wi.z == wo.z));
       CHECK_NEAR(r.pdf_w, F.R, 1e-6f);
       if (F.R == 1.f) continue;
       CHECK(sample(glass, wo, {0.9999f, 0.5f}, TransportMode::Radiance, t));
@@ -126,7 +126,7 @@ TEST_CASE(dielectric_sampling_follows_reflection_and_snell) {
   }
 }
 
-TEST_CASE(delta_bsdfs_have_no_density_and_mirror_reflects) {
+TEST_CASE("delta_bsdfs_have_no_density_and_mirror_reflects") {
   const Bsdf mirror = Mirror{Color(0.9f, 0.5f, 0.1f)}, glass = Dielectric{1.5f};
   const Vec3 wo = normalize(Vec3(0.3f, -0.2f, 0.9f)), wi = reflect_local(wo);
   for (const Bsdf* b : {&mirror, &glass}) {
@@ -139,10 +139,53 @@ TEST_CASE(delta_bsdfs_have_no_density_and_mirror_reflects) {
     const Vec3 w{wo.x, wo.y, side * wo.z};
     BsdfSample s;
     CHECK(sample(mirror, w, {0.7f, 0.2f}, TransportMode::Radiance, s));
-    CHECK(s.delta && s.pdf_w == 1.f && s.wi.z == w.z && s.wi.x == -w.x && s.wi.y == -w.y);
-    CHECK(s.weight.x == 0.9f && s.weight.y == 0.5f && s.weight.z == 0.1f);
+    CHECK((s.delta && s.pdf_w == 1.f && s.wi.z == w.z && s.wi.x == -w.x && s.wi.y == -w.y));
+    CHECK((s.weight.x == 0.9f && s.weight.y == 0.5f && s.weight.z == 0.1f));
   }
   BsdfSample s;
   CHECK(!sample(mirror, Vec3(1.f, 0.f, 0.f), {0.5f, 0.5f}, TransportMode::Radiance, s));
   CHECK(!sample(glass, Vec3(1.f, 0.f, 0.f), {0.5f, 0.5f}, TransportMode::Radiance, s));
+}
+
+TEST_CASE("bsdfs_report_their_own_flags") {
+  const Bsdf lambertian = Lambertian{Color(0.5f)}, mirror = Mirror{Color(0.9f)}, glass = Dielectric{1.5f};
+  CHECK(flags(lambertian) == BsdfFlags::DiffuseReflection);
+  CHECK(flags(mirror) == BsdfFlags::SpecularReflection);
+  CHECK(flags(glass) == (BsdfFlags::SpecularReflection | BsdfFlags::SpecularTransmission));
+  CHECK((!is_delta(lambertian) && is_delta(mirror) && is_delta(glass)));
+  CHECK((is_diffuse_reflector(flags(lambertian)) && !is_diffuse_reflector(flags(mirror)) &&
+         !is_diffuse_reflector(flags(glass))));
+  CHECK((!has_transmission(flags(mirror)) && has_transmission(flags(glass))));
+  // A lobe that is diffuse and specular at once is not delta: connections can still reach it.
+  CHECK(!is_delta(BsdfFlags::DiffuseReflection | BsdfFlags::SpecularReflection));
+  CHECK(diffuse_reflectance(lambertian).y == 0.5f);
+  CHECK(is_black(diffuse_reflectance(mirror)));
+}
+
+TEST_CASE("delta_lobes_match_sampling") {
+  const Vec3 wo = normalize(Vec3(0.3f, -0.2f, 0.9f));
+  const DeltaLobe m = delta_lobe(Bsdf{Mirror{Color(0.8f)}}, wo, reflect_local(wo));
+  CHECK((!m.refraction && m.prob == 1.f && m.coef.x == 0.8f && m.importance_ratio == 1.f));
+  CHECK(delta_lobe(Bsdf{Mirror{Color(0.8f)}}, wo, -wo).prob == 0.f);  // a mirror does not refract
+  Vec3 wi;
+  CHECK(!delta_direction(Bsdf{Mirror{Color(0.8f)}}, wo, true, wi));
+  CHECK(!delta_direction(Bsdf{Lambertian{Color(0.5f)}}, wo, false, wi));
+  for (const float eta : kEtas) {
+    const Bsdf glass = Dielectric{eta};
+    const Fresnel F = fresnel_dielectric(wo.z, eta);
+    Vec3 refracted;
+    REQUIRE(delta_direction(glass, wo, true, refracted));
+    const DeltaLobe t = delta_lobe(glass, wo, refracted);
+    CHECK((t.refraction && t.prob == 1.f - F.R));
+    CHECK_NEAR(t.importance_ratio, 1.f / (F.eta_ratio * F.eta_ratio), 1e-6f);
+    // Sampling the refraction gives the same direction and lobe probability.
+    BsdfSample s;
+    REQUIRE(sample(glass, wo, {0.99999f, 0.5f}, TransportMode::Importance, s));
+    CHECK(s.pdf_w == t.prob);
+    CHECK_NEAR(length(s.wi - refracted), 0.f, 1e-6f);
+    const DeltaLobe r = delta_lobe(glass, wo, reflect_local(wo));
+    CHECK((!r.refraction && r.prob == F.R && r.coef.x == F.R));
+  }
+  // Total internal reflection: no refracted direction from inside beyond the critical angle.
+  CHECK(!delta_direction(Bsdf{Dielectric{1.5f}}, normalize(Vec3(0.9f, 0.f, -0.2f)), true, wi));
 }

@@ -31,7 +31,7 @@ bool same_bits(const ExactSums& a, const ExactSums& b) {
 
 }  // namespace
 
-TEST_CASE(exact_sums_do_not_depend_on_the_order) {
+TEST_CASE("exact_sums_do_not_depend_on_the_order") {
   const std::vector<float> v = mixed_values(20000, 7);
   ExactSums forward(1, 1.0), shuffled(1, 1.0), halves(1, 1.0), second(1, 1.0);
   for (const float x : v) CHECK(forward.add(0, x));
@@ -55,21 +55,21 @@ TEST_CASE(exact_sums_do_not_depend_on_the_order) {
   CHECK(std::abs(forward.value(0) - reference) <= 1e-12 * std::abs(reference) + 1e-18);
 }
 
-TEST_CASE(exact_sums_reject_what_the_grid_cannot_hold) {
+TEST_CASE("exact_sums_reject_what_the_grid_cannot_hold") {
   ExactSums s(2, 0.5);  // grid 2^-64: a value must stay below 2^62
   CHECK(!s.add(0, std::nanf("")));
   CHECK(!s.add(0, INFINITY));
   CHECK(!s.add(0, 1e19f));
   CHECK(s.add(0, 1e18f));
-  CHECK(s.add(1, -3.25f) && s.add(1, 1e-19f));
-  CHECK(s.value(0) == 1e18f && s.value(1) == static_cast<double>(-3.25f) + static_cast<double>(1e-19f));
+  CHECK((s.add(1, -3.25f) && s.add(1, 1e-19f)));
+  CHECK((s.value(0) == 1e18f && s.value(1) == static_cast<double>(-3.25f) + static_cast<double>(1e-19f)));
   // Negative values are the exact opposites of positive ones: every value and its negation cancel.
   ExactSums cancel(1, 1.0);
   for (const float x : mixed_values(5000, 11)) {
     cancel.add(0, x);
     cancel.add(0, -x);
   }
-  CHECK(cancel.value(0) == 0.0 && cancel.words()[0] == 0 && cancel.words()[1] == 0);
+  CHECK((cancel.value(0) == 0.0 && cancel.words()[0] == 0 && cancel.words()[1] == 0));
   ExactSums other(3, 0.5), coarser(2, 4.0);
   bool threw = false;
   try {
@@ -87,7 +87,7 @@ TEST_CASE(exact_sums_reject_what_the_grid_cannot_hold) {
   CHECK(threw);
 }
 
-TEST_CASE(chain_rounds_give_each_chain_its_quota_whatever_the_clock) {
+TEST_CASE("chain_rounds_give_each_chain_its_quota_whatever_the_clock") {
   const uint64_t chains = 7, target = 1000;
   for (const uint32_t clock_seed : {1u, 2u, 3u}) {
     // A whole population, and the same chains in three ranges, each with its own clock.
@@ -117,7 +117,7 @@ TEST_CASE(chain_rounds_give_each_chain_its_quota_whatever_the_clock) {
   }
 }
 
-TEST_CASE(start_ups_and_parts_survive_bytes) {
+TEST_CASE("start_ups_and_parts_survive_bytes") {
   ChainStartUp start;
   start.image = {1.0, 2.0, 3.0};
   start.mlt.b = start.mlt.b_splatted = 0.5;
@@ -134,11 +134,11 @@ TEST_CASE(start_ups_and_parts_survive_bytes) {
     start.populations.push_back(p);
   }
   const ChainStartUp back = start_up_from_bytes(to_bytes(start));
-  CHECK(back.chains() == 10 && back.image == start.image && back.mlt.b == 0.5 && back.stats.rays == 42);
-  CHECK(back.stats.unoccluded && back.populations[1].depth == 4);
+  CHECK((back.chains() == 10 && back.image == start.image && back.mlt.b == 0.5 && back.stats.rays == 42));
+  CHECK((back.stats.unoccluded && back.populations[1].depth == 4));
   CHECK(back.populations[1].weights == start.populations[1].weights);
   const ChainStartUp trimmed = start.for_chains(0, 5);
-  CHECK(!trimmed.populations[0].weights.empty() && trimmed.populations[1].weights.empty());
+  CHECK((!trimmed.populations[0].weights.empty() && trimmed.populations[1].weights.empty()));
 
   ChainPart part;
   part.first_chain = 2;
@@ -151,9 +151,9 @@ TEST_CASE(start_ups_and_parts_survive_bytes) {
   part.mutations = {{"bidirectional", 3, 2, 1}};
   part.stats.seconds = 1.5;
   const ChainPart copy = part_from_bytes(to_bytes(part));
-  CHECK(copy.first_chain == 2 && copy.chains == 3 && copy.stats.seconds == 1.5);
-  CHECK(copy.populations[0].metropolis.value(1) == 0.125 && copy.populations[0].large_f[2].sum == 4.0);
-  CHECK(copy.mutations.size() == 1 && copy.mutations[0].name == "bidirectional" && copy.mutations[0].failed == 1);
+  CHECK((copy.first_chain == 2 && copy.chains == 3 && copy.stats.seconds == 1.5));
+  CHECK((copy.populations[0].metropolis.value(1) == 0.125 && copy.populations[0].large_f[2].sum == 4.0));
+  CHECK((copy.mutations.size() == 1 && copy.mutations[0].name == "bidirectional" && copy.mutations[0].failed == 1));
 
   // Malformed input is an error, not garbage: truncated, another kind, or trailing bytes.
   const std::string bytes = to_bytes(part);

@@ -34,7 +34,7 @@ void add_block(Film& film, uint32_t first, uint32_t count) {
 
 }  // namespace
 
-TEST_CASE(film_merged_from_blocks_equals_one_film) {
+TEST_CASE("film_merged_from_blocks_equals_one_film") {
   const uint32_t spp = 3 * kBlockSpp + 5;  // a short last block too
   Film whole(2, 1);
   add_block(whole, 0, spp);
@@ -47,11 +47,11 @@ TEST_CASE(film_merged_from_blocks_equals_one_film) {
   CHECK(whole.mean() == merged.mean());
   CHECK(whole.variance_of_mean() == merged.variance_of_mean());
   CHECK(whole.sample_counts() == merged.sample_counts());
-  CHECK(whole.light_paths() == merged.light_paths() && whole.light_paths() == spp);
+  CHECK((whole.light_paths() == merged.light_paths() && whole.light_paths() == spp));
   // Negative control: one block of all samples sums in another order and rounds differently.
   Film unblocked(2, 1);
   for (uint32_t s = 0; s < spp; ++s) unblocked.add_sample(0, value(s));
   unblocked.end_blocks();
   const FilmAccumulators a = unblocked.accumulators(), b = whole.accumulators();
-  CHECK(a.sum != b.sum || a.sum_sq != b.sum_sq);
+  CHECK((a.sum != b.sum || a.sum_sq != b.sum_sq));
 }

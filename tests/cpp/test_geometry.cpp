@@ -14,7 +14,7 @@ Scene unit_triangle_scene(Color emission) {
 }
 }  // namespace
 
-TEST_CASE(hits_from_both_sides_with_right_hand_normal) {
+TEST_CASE("hits_from_both_sides_with_right_hand_normal") {
   const Scene scene = unit_triangle_scene(Color(1.f));
   SurfaceHit hit;
   CHECK(scene.intersect(Ray{{0.2f, 0.3f, 2.f}, {0, 0, -1}}, hit));
@@ -31,7 +31,7 @@ TEST_CASE(hits_from_both_sides_with_right_hand_normal) {
   CHECK(!scene.intersect(Ray{{0.2f, 0.3f, 1.f}, {0, 0, -1}, 0.5f}, hit));  // beyond tmax
 }
 
-TEST_CASE(emitter_sampling_density_is_one_over_area) {
+TEST_CASE("emitter_sampling_density_is_one_over_area") {
   const Scene scene = unit_triangle_scene(Color(2.f));
   const EmitterChoice choice = scene.choose_emitter(0.5f);
   CHECK(choice.emitter == scene.emitter_at(0));
@@ -40,10 +40,10 @@ TEST_CASE(emitter_sampling_density_is_one_over_area) {
   CHECK_NEAR(s.pdf_a, 2.f, 1e-5f);  // area 1/2
   CHECK_NEAR(pdf_Le_position(*choice.emitter, choice.pmf), 2.f, 1e-5f);
   CHECK(s.prim == 0);
-  CHECK(s.p.x >= 0.f && s.p.y >= 0.f && s.p.x + s.p.y <= 1.f + 1e-6f && s.p.z == 0.f);
+  CHECK((s.p.x >= 0.f && s.p.y >= 0.f && s.p.x + s.p.y <= 1.f + 1e-6f && s.p.z == 0.f));
 }
 
-TEST_CASE(scene_rejects_malformed_input) {
+TEST_CASE("scene_rejects_malformed_input") {
   auto throws = [](auto make) {
     try {
       make();
@@ -60,7 +60,7 @@ TEST_CASE(scene_rejects_malformed_input) {
   CHECK(throws([&] { Scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {1}, {m}); }));            // material
 }
 
-TEST_CASE(offset_origin_leaves_the_surface_at_any_scale) {
+TEST_CASE("offset_origin_leaves_the_surface_at_any_scale") {
   for (const float scale : {1e-5f, 1.f, 1e5f}) {
     const Scene scene({0, 0, 0, scale, 0, 0, 0, scale, 0}, {0, 1, 2}, {0},
                       {Material{Lambertian{Color(0.5f)}, Color(0.f)}});
@@ -74,7 +74,7 @@ TEST_CASE(offset_origin_leaves_the_surface_at_any_scale) {
   }
 }
 
-TEST_CASE(camera_looks_along_forward_with_row_zero_on_top) {
+TEST_CASE("camera_looks_along_forward_with_row_zero_on_top") {
   const PinholeCamera cam(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90.f, 100, 50);
   const Ray centre = cam.generate_ray(50.f, 25.f);
   CHECK_NEAR(centre.d.z, 1.f, 1e-6f);
@@ -83,7 +83,7 @@ TEST_CASE(camera_looks_along_forward_with_row_zero_on_top) {
   CHECK_NEAR(cam.generate_ray(100.f, 25.f).d.x, -std::sqrt(0.5f), 1e-6f);
 }
 
-TEST_CASE(occlusion_filter_ignores_chosen_hits) {
+TEST_CASE("occlusion_filter_ignores_chosen_hits") {
   // Triangles at z = 0 (prim 0) and z = -1 (prim 1); the filter ignores prim 0.
   const EmbreeAccel accel({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1, 1, 0, -1, 0, 1, -1}, {0, 1, 2, 3, 4, 5});
   const HitFilter ignore_first{[](const void*, uint32_t prim, float) { return prim == 0; }, nullptr};
@@ -93,7 +93,7 @@ TEST_CASE(occlusion_filter_ignores_chosen_hits) {
   CHECK(accel.occluded(to_second, &ignore_first));
 }
 
-TEST_CASE(visibility_is_blocked_by_a_wall_touching_the_target_surface) {
+TEST_CASE("visibility_is_blocked_by_a_wall_touching_the_target_surface") {
   // Floor y = 0 as two unit squares split at x = 1, and a wall square x = 1 standing on the
   // split: a floor point just past the wall is hidden from a point left of it, however close
   // it lies to the wall.

@@ -32,7 +32,7 @@ const PinholeCamera kCamera({0.5f, 0.5f, 0.05f}, {0.5f, 0.5f, 1.f}, {0, 1, 0}, 6
 
 }  // namespace
 
-TEST_CASE(camera_projection_inverts_generate_ray) {
+TEST_CASE("camera_projection_inverts_generate_ray") {
   for (const Point2 xy : {Point2{0.5f, 0.5f}, Point2{31.2f, 3.7f}, Point2{16.f, 12.f}, Point2{7.3f, 23.9f}}) {
     const Ray r = kCamera.generate_ray(xy.u, xy.v);
     Point2 back{};
@@ -45,7 +45,7 @@ TEST_CASE(camera_projection_inverts_generate_ray) {
   CHECK(!kCamera.raster_position({5.f, 0.5f, 1.f}, unused));    // outside the field of view
 }
 
-TEST_CASE(camera_importance_integrates_to_one_per_pixel) {
+TEST_CASE("camera_importance_integrates_to_one_per_pixel") {
   // We = 1 / (A_pixel cos^3): integrate it over one pixel's solid angle numerically.
   const int n = 64;
   double integral = 0.0;
@@ -67,7 +67,7 @@ TEST_CASE(camera_importance_integrates_to_one_per_pixel) {
   CHECK_NEAR(kCamera.pdf_w(w) * 32.f * 24.f / kCamera.importance(w), 1.f, 1e-5f);
 }
 
-TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
+TEST_CASE("verify_accepts_the_walks_and_catches_tampering") {
   const Scene scene = closed_box();
   const WalkLimits limits{8, 1 << 30};
   TraceCounters rays;
@@ -83,7 +83,7 @@ TEST_CASE(verify_accepts_the_walks_and_catches_tampering) {
     }
     const PathCheck ok = verify(kCamera, path, from_camera);
     CHECK(ok.off == 0);
-    CHECK(ok.pdf_fwd < 1e-4f && ok.pdf_rev < 1e-4f && ok.beta < 1e-4f);
+    CHECK((ok.pdf_fwd < 1e-4f && ok.pdf_rev < 1e-4f && ok.beta < 1e-4f));
     if (path.size() < 4) continue;
     ++checked;
     Path bad = path;
@@ -125,7 +125,7 @@ Scene box_with_mirror() {
 
 }  // namespace
 
-TEST_CASE(mis_weights_of_all_strategies_sum_to_one) {
+TEST_CASE("mis_weights_of_all_strategies_sum_to_one") {
   // For a complete path x_0 (camera) .. x_k (on an emitter), build the subpaths every strategy
   // (s, t = k + 1 - s) would have drawn, with densities recomputed from positions in both
   // directions, and check that the weights of the strategies that can make the path sum to 1.

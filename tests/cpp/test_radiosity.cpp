@@ -10,7 +10,7 @@
 
 using namespace dualight;
 
-TEST_CASE(point_to_square_matches_the_closed_form) {
+TEST_CASE("point_to_square_matches_the_closed_form") {
   // A unit square centred 1 above a point facing it: F = 0.2394... (Howell, differential area
   // to a parallel rectangle: 4 quadrants of (1/2pi)(a/sqrt(1+a^2) atan(b/sqrt(1+a^2)) + ...)).
   const double a = 0.5, b = 0.5;
@@ -24,19 +24,19 @@ TEST_CASE(point_to_square_matches_the_closed_form) {
   CHECK(point_polygon_form_factor(Vec3(0, 0, 2), Vec3(0, 0, 1), square) == 0.0);
 }
 
-TEST_CASE(polygon_half_below_the_receiver_plane_is_clipped) {
+TEST_CASE("polygon_half_below_the_receiver_plane_is_clipped") {
   // A vertical square standing on the receiver's plane through the point: only the part above
   // counts, and tilting the receiver's normal into the plane leaves nothing.
   const std::vector<Vec3> wall = {{-1.f, 1.f, -1.f}, {1.f, 1.f, -1.f}, {1.f, 1.f, 1.f}, {-1.f, 1.f, 1.f}};
   const double up = point_polygon_form_factor(Vec3(0, 0, 0), Vec3(0, 0, 1), wall);
   const double down = point_polygon_form_factor(Vec3(0, 0, 0), Vec3(0, 0, -1), wall);
   const double facing = point_polygon_form_factor(Vec3(0, 0, 0), Vec3(0, 1, 0), wall);
-  CHECK(up > 0.0 && down > 0.0);
+  CHECK((up > 0.0 && down > 0.0));
   CHECK_NEAR(up, down, 1e-9);  // symmetric halves
   CHECK(facing > up + down - 1e-9);  // the whole wall is above the plane facing it
 }
 
-TEST_CASE(csr_transpose_round_trips) {
+TEST_CASE("csr_transpose_round_trips") {
   CsrMatrix m;
   m.n = 3;
   m.indptr = {0, 2, 3, 4};
@@ -47,10 +47,10 @@ TEST_CASE(csr_transpose_round_trips) {
   CHECK(t.indices == (std::vector<uint32_t>{1, 0, 2, 0}));
   CHECK(t.values == (std::vector<float>{0.75f, 0.5f, 1.0f, 0.25f}));
   const CsrMatrix back = t.transpose();
-  CHECK(back.indices == m.indices && back.values == m.values && back.indptr == m.indptr);
+  CHECK((back.indices == m.indices && back.values == m.values && back.indptr == m.indptr));
 }
 
-TEST_CASE(solvers_agree_on_a_two_patch_enclosure) {
+TEST_CASE("solvers_agree_on_a_two_patch_enclosure") {
   // Two patches seeing only each other: F = [[0, 1], [1, 0]], rho = 0.5, E = (1, 0):
   // B1 = 1 + 0.5 B2, B2 = 0.5 B1  =>  B1 = 4/3, B2 = 2/3. Dual with R = (0, 1): I = (2/3, 4/3).
   CsrMatrix F;
@@ -81,5 +81,5 @@ TEST_CASE(solvers_agree_on_a_two_patch_enclosure) {
   CHECK_NEAR(jacobi.solution()[0], 4.0 / 3.0, 1e-12);
   CHECK_NEAR(gs.solution()[0], 2.0 / 3.0, 1e-12);
   CHECK_NEAR(sw.solution()[3], 2.0 / 3.0, 1e-12);
-  CHECK(jacobi.residual() < 1e-12 && gs.residual() < 1e-12 && sw.residual() < 1e-12);
+  CHECK((jacobi.residual() < 1e-12 && gs.residual() < 1e-12 && sw.residual() < 1e-12));
 }

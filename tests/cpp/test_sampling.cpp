@@ -10,7 +10,7 @@
 
 using namespace dualight;
 
-TEST_CASE(cosine_hemisphere_moments_match_its_pdf) {
+TEST_CASE("cosine_hemisphere_moments_match_its_pdf") {
   // E[cos] = 2/3 and E[cos^2] = 1/2 under p = cos/pi; all samples on the upper hemisphere.
   Pcg32 rng(1, 2);
   const int n = 200000;
@@ -31,7 +31,7 @@ TEST_CASE(cosine_hemisphere_moments_match_its_pdf) {
   CHECK(cosine_hemisphere_pdf(-0.1f) == 0.f);
 }
 
-TEST_CASE(uniform_triangle_barycentrics_are_uniform) {
+TEST_CASE("uniform_triangle_barycentrics_are_uniform") {
   // The mean of uniform barycentrics is the centroid (1/3, 1/3); all inside the triangle.
   Pcg32 rng(3, 4);
   const int n = 200000;
@@ -48,13 +48,13 @@ TEST_CASE(uniform_triangle_barycentrics_are_uniform) {
   CHECK_NEAR(b2 / n, 1.0 / 3.0, 3e-3);
 }
 
-TEST_CASE(power_heuristic_weights_sum_to_one) {
+TEST_CASE("power_heuristic_weights_sum_to_one") {
   CHECK_NEAR(power_heuristic(1.f, 3.f) + power_heuristic(3.f, 1.f), 1.f, 1e-6f);
   CHECK(power_heuristic(0.f, 1.f) == 0.f);
   CHECK(power_heuristic(1.f, 0.f) == 1.f);
 }
 
-TEST_CASE(discrete_distribution_samples_in_proportion) {
+TEST_CASE("discrete_distribution_samples_in_proportion") {
   const DiscreteDistribution d({1.0, 0.0, 3.0});
   CHECK_NEAR(d.pmf(0), 0.25f, 1e-7f);
   CHECK(d.pmf(1) == 0.f);
@@ -63,7 +63,7 @@ TEST_CASE(discrete_distribution_samples_in_proportion) {
   for (int i = 0; i < 100000; ++i) {
     float u = rng.next_float();
     const size_t k = d.sample(u);
-    CHECK(u >= 0.f && u < 1.f);
+    CHECK((u >= 0.f && u < 1.f));
     ++counts[k];
   }
   CHECK(counts[1] == 0);
@@ -77,7 +77,7 @@ TEST_CASE(discrete_distribution_samples_in_proportion) {
   CHECK(threw);
 }
 
-TEST_CASE(frames_are_orthonormal_for_any_normal) {
+TEST_CASE("frames_are_orthonormal_for_any_normal") {
   Pcg32 rng(7, 8);
   for (int i = 0; i < 10000; ++i) {
     const Vec3 n = normalize(Vec3(rng.next_float() - .5f, rng.next_float() - .5f, rng.next_float() - .5f));
@@ -91,7 +91,7 @@ TEST_CASE(frames_are_orthonormal_for_any_normal) {
   CHECK_NEAR(dot(down.s, down.t), 0.f, 1e-6f);
 }
 
-TEST_CASE(pcg32_floats_stay_below_one_and_streams_differ) {
+TEST_CASE("pcg32_floats_stay_below_one_and_streams_differ") {
   Pcg32 a(1, 1), b(1, 2);
   bool below = true, differ = false;
   for (int i = 0; i < 100000; ++i) {

@@ -34,10 +34,10 @@ Scene make(const Mesh& m, Bsdf bsdf = Lambertian{Color(0.5f)}) {
 
 }  // namespace
 
-TEST_CASE(a_box_seen_from_inside_is_a_closed_convex_enclosure) {
+TEST_CASE("a_box_seen_from_inside_is_a_closed_convex_enclosure") {
   const Scene scene = make(box(true));
   const SceneFeatures& f = scene.features();
-  CHECK(f.closed && f.convex_enclosure && f.convexity_checked && f.unoccluded() && f.all_diffuse());
+  CHECK((f.closed && f.convex_enclosure && f.convexity_checked && f.unoccluded() && f.all_diffuse()));
   CHECK(f.emitter_triangles == 12);
   CHECK(f.planes.size() == 6);  // two triangles per face, one plane
   CHECK(f.encloses(Vec3(0.5f, 0.5f, 0.5f)));
@@ -45,14 +45,14 @@ TEST_CASE(a_box_seen_from_inside_is_a_closed_convex_enclosure) {
   CHECK(!f.encloses(Vec3(0.5f, 0.5f, 1.0f)));  // on a wall: not strictly inside
 }
 
-TEST_CASE(a_box_seen_from_outside_is_closed_but_not_an_enclosure) {
+TEST_CASE("a_box_seen_from_outside_is_closed_but_not_an_enclosure") {
   const Scene scene = make(box(false));
   const SceneFeatures& f = scene.features();
-  CHECK(f.closed && !f.convex_enclosure && f.convexity_checked);
+  CHECK((f.closed && !f.convex_enclosure && f.convexity_checked));
   CHECK(!f.encloses(Vec3(0.5f, 0.5f, 0.5f)));
 }
 
-TEST_CASE(a_block_inside_a_room_breaks_convexity) {
+TEST_CASE("a_block_inside_a_room_breaks_convexity") {
   Mesh room = box(true);
   const Mesh block = box(false, 0.4f, 0.6f);
   const auto offset = static_cast<uint32_t>(room.positions.size() / 3);
@@ -60,21 +60,21 @@ TEST_CASE(a_block_inside_a_room_breaks_convexity) {
   for (const uint32_t i : block.triangles) room.triangles.push_back(i + offset);
   const Scene scene = make(room);
   const SceneFeatures& f = scene.features();
-  CHECK(f.closed && !f.convex_enclosure);
+  CHECK((f.closed && !f.convex_enclosure));
 }
 
-TEST_CASE(an_open_box_is_convex_but_not_closed) {
+TEST_CASE("an_open_box_is_convex_but_not_closed") {
   Mesh open = box(true);
   open.triangles.resize(open.triangles.size() - 6);  // drop the +z face
   const Scene scene = make(open);
   const SceneFeatures& f = scene.features();
-  CHECK(!f.closed && f.convex_enclosure);
+  CHECK((!f.closed && f.convex_enclosure));
   CHECK(f.encloses(Vec3(0.5f, 0.5f, 5.f)));  // the enclosure is open towards +z
 }
 
-TEST_CASE(glass_makes_a_convex_enclosure_occluding) {
+TEST_CASE("glass_makes_a_convex_enclosure_occluding") {
   const SceneFeatures mirror = make(box(true), Mirror{Color(1.f)}).features();  // a copy: the scene is a temporary
-  CHECK(mirror.specular && !mirror.dielectric && mirror.unoccluded());
+  CHECK((mirror.specular && !mirror.dielectric && mirror.unoccluded()));
   const SceneFeatures glass = make(box(true), Dielectric{1.5f}).features();
-  CHECK(glass.specular && glass.dielectric && glass.convex_enclosure && !glass.unoccluded());
+  CHECK((glass.specular && glass.dielectric && glass.convex_enclosure && !glass.unoccluded()));
 }
