@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "core/sampler.h"
 #include "core/sampling.h"
 
 namespace dualight {
@@ -28,13 +29,13 @@ class PrimarySampleSampler {
   void start_iteration() {
     ++iteration_;
     large_step_ = rng_.next_float() < large_step_probability_;
-    start_stream(0);
+    start_stream(kCameraStream);
   }
   // The first iteration after construction is always a large step (an independent sample).
   void start_large_step() {
     ++iteration_;
     large_step_ = true;
-    start_stream(0);
+    start_stream(kCameraStream);
   }
   static constexpr int kStreams = 3;
   void start_stream(int stream) {

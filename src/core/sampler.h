@@ -19,6 +19,12 @@ namespace dualight {
 
 enum class SamplerType { Independent, Sobol };
 
+// The named streams of a BDPT sample's numbers (pbrt-v4's cameraStreamIndex, ...): the camera
+// subpath, the light subpath and the connections each draw from their own, so that a
+// primary-sample mutation that lengthens one leaves the others' numbers where they were.
+// Samplers with a single stream ignore them.
+enum SampleStream : int { kCameraStream = 0, kLightStream = 1, kConnectStream = 2 };
+
 class IndependentSampler {
  public:
   IndependentSampler(uint64_t seed, uint64_t pixel, uint32_t sample_index)

@@ -50,11 +50,11 @@ template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
                   Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
-  // The camera subpath continues the stream (0) that drew the film position.
+  // The camera subpath continues the camera stream, which drew the film position.
   camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
-  sampler.start_stream(1);
+  sampler.start_stream(kLightStream);
   light_subpath(scene, sampler, limits, paths.light, counters);
-  sampler.start_stream(2);
+  sampler.start_stream(kConnectStream);
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
 
   Color L(0.f);

@@ -15,8 +15,11 @@
 #include "core/primary_sample_sampler.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
+#include "pathspace/chain_runner.h"
 #include "pathspace/chain_split.h"
 #include "pathspace/direct_light.h"
+#include "pathspace/mmlt.h"
+#include "pathspace/primary_sample_contribution.h"
 #include "pathspace/start_up.h"
 
 namespace dualight {
@@ -26,32 +29,13 @@ namespace {
 constexpr uint64_t kBootstrapStream = 0x51ed'2701'a3c4'9b1full;
 constexpr uint64_t kChainStream = 0x2c9f'77d3'0e41'b58aull;
 
-// What one BDPT sample contributes to the film: the own pixel's value scaled by the pixel count
-// (the film position is uniform over the film) and the light-tracing splats; f is their total
-// luminance.
-struct Contribution {
-  std::vector<Splat> splats;
-  float f = 0.f;
-};
-
-// depth 0: a whole BDPT sample, every strategy (Kelemen's PSSMLT). depth d > 0: one strategy of
-// the paths of d segments, chosen by the first number (multiplexed MLT, Hachisuka et al. 2014),
-// its MIS-weighted contribution divided by the strategy's probability.
-class Evaluator {
+// A whole BDPT sample from the primary samples, every strategy (Kelemen's PSSMLT; depth 0).
+class BdptSampleEvaluator {
  public:
-  Evaluator(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, int depth)
-      : scene_(scene), camera_(camera), depth_(depth) {
-    bdpt_.max_depth = opt.max_depth;
-    bdpt_.rr_depth = opt.rr_depth;
-    bdpt_.heuristic = opt.heuristic;
-    bdpt_.min_depth = opt.direct_spp > 0 ? 3 : 1;
-  }
+  BdptSampleEvaluator(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt)
+      : scene_(scene), camera_(camera), bdpt_(chain_bdpt(opt)) {}
 
   void operator()(PrimarySampleSampler& sampler, Contribution& out, TraceCounters& counters) {
-    if (depth_ > 0) {
-      one_strategy(sampler, out, counters);
-      return;
-    }
     const Point2 film = camera_.film_position(sampler.next_2d());
     const float x = film.u, y = film.v;
     const float pixels = static_cast<float>(camera_.width()) * static_cast<float>(camera_.height());
@@ -73,54 +57,24 @@ class Evaluator {
   uint64_t invalid() const { return invalid_; }
 
  private:
-  void one_strategy(PrimarySampleSampler& sampler, Contribution& out, TraceCounters& counters) {
-    out.splats.clear();
-    out.f = 0.f;
-    const int d = depth_;
-    const int n = d == 1 ? 1 : d + 1;  // (s, t) with s + t = d + 1, t >= 1; (1, 1) only as (0, 2)
-    const int s = d == 1 ? 0 : std::min(static_cast<int>(sampler.next_1d() * static_cast<float>(n)), n - 1);
-    const int t = d + 1 - s;
-    const Point2 film = camera_.film_position(sampler.next_2d());
-    const float x = film.u, y = film.v;
-    const float pixels = static_cast<float>(camera_.width()) * static_cast<float>(camera_.height());
-    // Subpaths of exactly t and s vertices (no Russian roulette: the strategy fixes the length).
-    camera_subpath(scene_, camera_, x, y, sampler, WalkLimits{t - 1, 1 << 30}, paths_.camera, counters);
-    if (static_cast<int>(paths_.camera.size()) != t) return;
-    sampler.start_stream(1);
-    paths_.light.clear();
-    if (s > 0) {
-      light_subpath(scene_, sampler, WalkLimits{s, 1 << 30}, paths_.light, counters);
-      if (static_cast<int>(paths_.light.size()) != s) return;
-    }
-    sampler.start_stream(2);
-    Vertex sampled;
-    Point2 raster{};
-    Color c = connect(scene_, camera_, paths_.light, paths_.camera, s, t, sampler, sampled, raster, counters);
-    if (is_black(c)) return;
-    c *= mis_weight(scene_, camera_, paths_.light, paths_.camera, sampled, s, t, bdpt_.heuristic) *
-         static_cast<float>(n);
-    if (!is_finite(c)) {
-      ++invalid_;
-      return;
-    }
-    if (t == 1) {
-      out.splats.push_back(
-          {static_cast<uint32_t>(raster.v) * camera_.width() + static_cast<uint32_t>(raster.u), 0, c});
-    } else {
-      out.splats.push_back(
-          {static_cast<uint32_t>(y) * camera_.width() + static_cast<uint32_t>(x), 0, c * pixels});
-    }
-    out.f = std::max(0.f, luminance(out.splats.back().value));
-  }
-
   const Scene& scene_;
   const PinholeCamera& camera_;
-  int depth_;
   BdptOptions bdpt_;
   Subpaths paths_;
   SplatList splats_;
   uint64_t invalid_ = 0;
 };
+
+// Calls f(make) with a factory of the evaluator of population depth d: a whole BDPT sample (0)
+// or one strategy of the paths of d segments (MMLT, mmlt.h).
+template <class F>
+void with_evaluator(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, int d, const F& f) {
+  if (d == 0) {
+    f([&] { return BdptSampleEvaluator(scene, camera, opt); });
+  } else {
+    f([&, d] { return StrategyEvaluator(scene, camera, opt, d); });
+  }
+}
 
 struct Chain {
   PrimarySampleSampler sampler;
@@ -164,6 +118,60 @@ uint64_t bootstrap_seed(const PssmltOptions& opt, int depth) {
 uint64_t chain_seed(const PssmltOptions& opt, int depth) {
   return hash_combine(opt.seed, kChainStream + static_cast<uint64_t>(depth));
 }
+
+// What a state's h is multiplied by, before its weight a, 1 - a or L (see run_chains).
+struct SplatScale {
+  bool large_step_mis;
+  float b, p_large;
+  float operator()(float f) const { return large_step_mis ? 1.f / (f / b + p_large) : b / f; }
+};
+
+// One chain's mutations of a round: Kelemen's proposal (a small or large step of the primary
+// samples), accepted with probability min(1, f(y) / f(x)), both states splatted.
+template <class Evaluate>
+struct PssmltStep {
+  const PssmltOptions& opt;
+  const SplatScale& per_h;
+  Chain& chain;
+  Evaluate evaluate;
+  TraceCounters& counters;
+  MeanEstimate& large_f;
+  uint64_t &accepted, &large_acc, &zero;
+  std::atomic<uint64_t>& invalid;
+  Contribution proposed{};
+
+  void operator()(SplatList& splats) {
+    chain.sampler.start_iteration();
+    const bool large_step = chain.sampler.large_step();
+    evaluate(chain.sampler, proposed, counters);
+    const float a = chain.current.f > 0.f ? std::min(1.f, proposed.f / chain.current.f) : 1.f;
+    if (proposed.f > 0.f) {
+      const float k = per_h(proposed.f);
+      for (const Splat& sp : proposed.splats) {
+        splats.add(sp.pixel, sp.value * (a * k), kMetropolisLayer);
+        if (large_step && opt.large_step_mis) splats.add(sp.pixel, sp.value * k, kLargeStepLayer);
+      }
+    } else {
+      ++zero;
+    }
+    if (chain.current.f > 0.f && a < 1.f) {
+      const float k = (1.f - a) * per_h(chain.current.f);
+      for (const Splat& sp : chain.current.splats) splats.add(sp.pixel, sp.value * k, kMetropolisLayer);
+    }
+    if (large_step) large_f.add(proposed.f);
+    if (proposed.f > 0.f && chain.rng.next_float() < a) {
+      std::swap(chain.current, proposed);
+      chain.sampler.accept();
+      ++accepted;
+      large_acc += large_step;
+    } else {
+      chain.sampler.reject();
+    }
+  }
+  void end_round(const SplatList& splats) {
+    invalid.fetch_add(evaluate.invalid() + splats.invalid(), std::memory_order_relaxed);
+  }
+};
 
 // Chains [lo, hi) of a population, started from bootstrap samples chosen in proportion to f (no
 // start-up bias), mutated in rounds until their quotas of the population's target (0: none) or
@@ -214,68 +222,23 @@ bool run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const Chain
     }
     rays.add(counters);
   }
-  const float b = static_cast<float>(population.b_splat), p_large = opt.large_step_probability;
-  // What a state's h is multiplied by, before its weight a, 1 - a or L (see above).
-  const auto per_h = [&](float f) { return opt.large_step_mis ? 1.f / (f / b + p_large) : b / f; };
-  std::vector<SplatList> out(n_chains);
+  const SplatScale per_h{opt.large_step_mis, static_cast<float>(population.b_splat), opt.large_step_probability};
   pop.large_f.assign(n_chains, MeanEstimate{});
-  std::vector<uint64_t> done(n_chains, 0), accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
+  std::vector<uint64_t> accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
   ChainRounds rounds(population.chains, lo, n_chains, population.target, deadline);
   uint64_t rejected = 0;  // splats too large for the exact sums
-  while (rounds.next(elapsed(), control)) {
-    parallel_for_each_index(opt.threads, n_chains, [&](size_t c) {
-      const uint64_t share = rounds.share(c);
-      Chain& chain = chains[c];
-      auto evaluate = make();
-      Contribution proposed;
-      TraceCounters counters = rays.local();
-      SplatList& splats = out[c];
-      splats.clear();
-      done[c] = 0;
-      for (uint64_t m = 0; m < share; ++m) {
-        if ((m & 63u) == 0 && control.cancelled()) break;
-        chain.sampler.start_iteration();
-        const bool large_step = chain.sampler.large_step();
-        evaluate(chain.sampler, proposed, counters);
-        const float a = chain.current.f > 0.f ? std::min(1.f, proposed.f / chain.current.f) : 1.f;
-        if (proposed.f > 0.f) {
-          const float k = per_h(proposed.f);
-          for (const Splat& sp : proposed.splats) {
-            splats.add(sp.pixel, sp.value * (a * k), kMetropolisLayer);
-            if (large_step && opt.large_step_mis) splats.add(sp.pixel, sp.value * k, kLargeStepLayer);
-          }
-        } else {
-          ++zero[c];
+  run_chain_rounds(
+      opt.threads, n_chains, rounds, elapsed, control, rays,
+      [&](size_t c, TraceCounters& counters) {
+        return PssmltStep<decltype(make())>{opt,       per_h,        chains[c], make(), counters, pop.large_f[c],
+                                            accepted[c], large_acc[c], zero[c],  invalid};
+      },
+      [&](size_t, const SplatList& splats) {
+        for (const Splat& sp : splats.splats()) {
+          ExactSums& sum = sp.layer == kMetropolisLayer ? pop.metropolis : pop.large;
+          for (int ch = 0; ch < 3; ++ch) rejected += !sum.add(3 * sp.pixel + ch, sp.value[ch]);
         }
-        if (chain.current.f > 0.f && a < 1.f) {
-          const float k = (1.f - a) * per_h(chain.current.f);
-          for (const Splat& sp : chain.current.splats) splats.add(sp.pixel, sp.value * k, kMetropolisLayer);
-        }
-        if (large_step) pop.large_f[c].add(proposed.f);
-        if (proposed.f > 0.f && chain.rng.next_float() < a) {
-          std::swap(chain.current, proposed);
-          chain.sampler.accept();
-          ++accepted[c];
-          large_acc[c] += large_step;
-        } else {
-          chain.sampler.reject();
-        }
-        ++done[c];
-      }
-      rays.add(counters);
-      invalid.fetch_add(evaluate.invalid() + splats.invalid(), std::memory_order_relaxed);
-      control.done.fetch_add(done[c], std::memory_order_relaxed);
-    });
-    uint64_t round = 0;
-    for (size_t c = 0; c < n_chains; ++c) {
-      for (const Splat& sp : out[c].splats()) {
-        ExactSums& sum = sp.layer == kMetropolisLayer ? pop.metropolis : pop.large;
-        for (int ch = 0; ch < 3; ++ch) rejected += !sum.add(3 * sp.pixel + ch, sp.value[ch]);
-      }
-      round += done[c];
-    }
-    if (!rounds.finish(round, elapsed(), control)) break;
-  }
+      });
   invalid.fetch_add(rejected, std::memory_order_relaxed);
   pop.mutations = rounds.total();
   for (size_t c = 0; c < n_chains; ++c) {
@@ -341,12 +304,13 @@ ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, co
     const int last = opt.multiplexed ? opt.max_depth : 0;
     double b_total = 0.0;
     for (int d = first; d <= last; ++d) {
-      const auto make = [&, d] { return Evaluator(scene, camera, opt, d); };
       // Under a time limit the lengths share the bootstrap's share.
       const double seconds = kBootstrapShare * opt.time_limit / static_cast<double>(last - first + 1);
       ChainPopulation p;
       p.depth = d;
-      p.weights = bootstrap(make, opt, bootstrap_seed(opt, d), n_boot, seconds, elapsed, control, rays, invalid);
+      with_evaluator(scene, camera, opt, d, [&](const auto& make) {
+        p.weights = bootstrap(make, opt, bootstrap_seed(opt, d), n_boot, seconds, elapsed, control, rays, invalid);
+      });
       p.b_splat = estimate_of(p.weights).mean();
       b_total += p.b_splat;
       start.populations.push_back(std::move(p));
@@ -413,9 +377,10 @@ ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const P
     const auto [lo, hi] = range_in(p);
     if (lo >= hi || control.cancelled()) continue;
     if (p.weights.empty()) throw std::invalid_argument("the chain start-up holds no bootstrap for these chains");
-    const auto make = [&, d = p.depth] { return Evaluator(scene, camera, opt, d); };
-    part.stats.time_limited |= run_chains(make, opt, p, lo, hi, deadline, pixels, elapsed, control, rays, invalid,
-                                          part.populations[i]);
+    with_evaluator(scene, camera, opt, p.depth, [&](const auto& make) {
+      part.stats.time_limited |= run_chains(make, opt, p, lo, hi, deadline, pixels, elapsed, control, rays,
+                                            invalid, part.populations[i]);
+    });
   }
   RenderStats& stats = part.stats;
   rays.into(stats);
