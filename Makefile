@@ -1,7 +1,7 @@
 # The README's commands. Each sets itself up first (idempotent; see scripts/setup.sh).
 VENV := .venv
 PY := $(VENV)/bin/python
-SOURCES := $(shell find src python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
+SOURCES := $(shell find src python tests/hooks -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
 .PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
 
@@ -10,10 +10,11 @@ $(VENV)/.setup-done: scripts/setup.sh
 	bash scripts/setup.sh
 	touch $@
 
-# Rebuilds only when a source changed; build/ keeps CMake's incremental state.
+# Rebuilds only when a source changed; build/ keeps CMake's incremental state. With the test
+# hooks module dualight._testing (tests/hooks), which a plain `pip install .` leaves out.
 install: $(VENV)/.installed
 $(VENV)/.installed: $(VENV)/.setup-done $(SOURCES)
-	$(PY) -m pip install -q --disable-pip-version-check --no-build-isolation .
+	DUALIGHT_TESTING=ON $(PY) -m pip install -q --disable-pip-version-check --no-build-isolation .
 	touch $@
 
 demo: install

@@ -27,15 +27,15 @@ tests/test_executor.py::test_any_split_of_the_chains_gives_the_same_image"}
 
 start=$(date +%s)
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDUALIGHT_SANITIZE=ON \
-  -DCMAKE_INTERPROCEDURAL_OPTIMIZATION=OFF -DBUILD_TESTING=ON -DDUALIGHT_PYTHON=ON \
+  -DCMAKE_INTERPROCEDURAL_OPTIMIZATION=OFF -DBUILD_TESTING=ON -DDUALIGHT_PYTHON=ON -DDUALIGHT_TESTING=ON \
   -DPython_EXECUTABLE="$PWD/$PY" -Dpybind11_DIR="$("$PY" -m pybind11 --cmakedir)" >/dev/null
 cmake --build "$BUILD" -j 2
 
-# The package from the source tree plus the instrumented extension.
+# The package from the source tree plus the instrumented extension and test hooks module.
 rm -rf "$SITE/dualight"
 mkdir -p "$SITE/dualight"
 cp -r python/dualight/. "$SITE/dualight/"
-cp "$BUILD"/src/_core*.so "$SITE/dualight/"
+cp "$BUILD"/src/_core*.so "$BUILD"/tests/hooks/_testing*.so "$SITE/dualight/"
 
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:strict_init_order=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1

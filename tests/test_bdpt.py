@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import dualight
-from dualight import _core, metrics, scenes
+from dualight import _testing, metrics, scenes
 
 ADJOINT = ("light", "bdpt")
 
@@ -119,7 +119,7 @@ def test_power_and_balance_heuristics_agree_in_expectation() -> None:
 
 def test_verify_recomputes_cached_path_quantities() -> None:
     for scene in (scenes.cornell_box(resolution=(32, 32)), scenes.furnace(0.8, 1.0, (16, 16))):
-        check = _core.verify_random_subpaths(
+        check = _testing.verify_random_subpaths(
             scene._compile(), scene.camera._compile(), 4000, max_depth=8, seed=2
         )
         assert check["vertices"] > 8000

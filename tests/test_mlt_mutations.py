@@ -4,7 +4,7 @@ transition densities the mutations report are right.
 Stationarity. Chains start from paths resampled from the bootstrap in proportion to their
 weight, and the image is b_hat x (the chains' averages): over bootstraps, b_hat x (the start
 distribution) equals f exactly, and a kernel that leaves f invariant keeps it. So chains that
-use a single mutation (staying put where it does not suit; `_core.check_mlt_single_mutation`)
+use a single mutation (staying put where it does not suit; `_testing.check_mlt_single_mutation`)
 still give an unbiased image although they are not ergodic, and a mutation whose acceptance is
 wrong gives a biased one. Each mutation's image is compared with BDPT's on the same scene
 (direct_spp = 0: the chains carry all the light, as in BDPT's image), and the same comparison
@@ -47,7 +47,7 @@ import numpy as np
 import pytest
 
 import dualight
-from dualight import _core, scenes
+from dualight import _core, _testing, scenes
 
 NS = 24  # seeds per image set
 T_MAX = 4.5
@@ -153,7 +153,9 @@ def _single_mutation_images(mutation: str, transition_ratio: str) -> tuple[np.nd
             mutations_per_pixel=case.mutations_per_pixel, max_depth=case.max_depth, seed=seed,
             chains=case.chains, bootstrap=20000, direct_spp=case.direct_spp,
         )
-        out = _core.check_mlt_single_mutation(compiled, camera, options, mutation, transition_ratio)
+        out = _testing.check_mlt_single_mutation(
+            compiled, camera, options, mutation, transition_ratio
+        )
         blocks.append(_blocks(np.asarray(out["mean"], np.float64)))
         stats = out["stats"]["mutation_types"][mutation]
         counts["proposed"] += stats["proposed"]
@@ -212,9 +214,9 @@ def test_single_mutation_hook_rejects_unknown_names() -> None:
     options = _core.MltOptions(mutations_per_pixel=1, bootstrap=100, chains=4)
     args = (scene._compile(), scene.camera._compile(), options)
     with pytest.raises(ValueError, match="unknown mutation"):
-        _core.check_mlt_single_mutation(*args, "lens")
+        _testing.check_mlt_single_mutation(*args, "lens")
     with pytest.raises(ValueError, match="transition_ratio"):
-        _core.check_mlt_single_mutation(*args, "lens_subpath", "swapped")
+        _testing.check_mlt_single_mutation(*args, "lens_subpath", "swapped")
 
 
 # Finite differences: corners are traced in float, so the image's area carries rounding of
@@ -243,7 +245,7 @@ def test_perturbation_densities_match_finite_differences(mutation: str) -> None:
     scene = SCENES["caustic_box"]()
     options = _core.MltOptions(max_depth=4, seed=3, direct_spp=0)
     checks = np.array(
-        _core.check_mlt_perturbation_densities(
+        _testing.check_mlt_perturbation_densities(
             scene._compile(), scene.camera._compile(), options, mutation, 2000, 4, 0.02, 1e-3
         )
     )
@@ -271,7 +273,7 @@ def test_bidirectional_density_estimates_an_area(vertex: int) -> None:
     scene = SCENES["caustic_box"]()
     options = _core.MltOptions(max_depth=4, seed=3, direct_spp=128)
     n = 200000
-    d = _core.check_mlt_bidirectional_density(
+    d = _testing.check_mlt_bidirectional_density(
         scene._compile(), scene.camera._compile(), options, vertex, n, 200000
     )
     move, pdf_light, pdf_eye = (np.array(d[k]) for k in ("move", "pdf_light", "pdf_eye"))

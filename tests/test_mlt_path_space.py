@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import dualight
-from dualight import _core, scenes
+from dualight import _core, _testing, scenes
 
 REFERENCES = Path(__file__).parent / "references"
 SCENES = {
@@ -22,7 +22,7 @@ SCENES = {
 
 def _relative_errors(scene, rr_depth: int, count: int = 1500) -> tuple[np.ndarray, set]:
     options = _core.MltOptions(max_depth=10, rr_depth=rr_depth, seed=3)
-    checks = _core.check_mlt_bootstrap_paths(
+    checks = _testing.check_mlt_bootstrap_paths(
         scene._compile(), scene.camera._compile(), options, count
     )
     values = np.array([(c[2], c[3]) for c in checks])

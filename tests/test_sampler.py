@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dualight
-from dualight import _core, scenes
+from dualight import _core, _testing, scenes
 
 SOBOL = _core.SamplerType.sobol
 INDEPENDENT = _core.SamplerType.independent
@@ -24,17 +24,17 @@ def _strata_filled(points: np.ndarray, log2_n: int) -> bool:
 
 @pytest.mark.parametrize("log2_n", [4, 8, 10])
 def test_sobol_pairs_are_0m2_nets_in_every_dimension(log2_n: int) -> None:
-    points = _core.sampler_points(SOBOL, 3, 12345, 1 << log2_n, 6)
+    points = _testing.sampler_points(SOBOL, 3, 12345, 1 << log2_n, 6)
     assert all(_strata_filled(points[:, d], log2_n) for d in range(6))
     # ... which independent samples almost never are.
-    random = _core.sampler_points(INDEPENDENT, 3, 12345, 1 << log2_n, 6)
+    random = _testing.sampler_points(INDEPENDENT, 3, 12345, 1 << log2_n, 6)
     assert not any(_strata_filled(random[:, d], log2_n) for d in range(6))
 
 
 @pytest.mark.parametrize("sampler", [SOBOL, INDEPENDENT])
 def test_samples_are_uniform_and_dimensions_uncorrelated(sampler) -> None:
     n = 4096
-    points = _core.sampler_points(sampler, 0, 7, n, 4).reshape(n, 8).astype(np.float64)
+    points = _testing.sampler_points(sampler, 0, 7, n, 4).reshape(n, 8).astype(np.float64)
     assert np.all((points >= 0.0) & (points < 1.0))
     # Means and variances of U(0, 1) within a few standard errors.
     assert np.all(np.abs(points.mean(axis=0) - 0.5) < 5 * np.sqrt(1 / 12 / n))
@@ -44,10 +44,10 @@ def test_samples_are_uniform_and_dimensions_uncorrelated(sampler) -> None:
 
 
 def test_sobol_scrambles_differ_between_pixels_and_seeds() -> None:
-    a = _core.sampler_points(SOBOL, 0, 1, 64, 2)
-    assert not np.array_equal(a, _core.sampler_points(SOBOL, 0, 2, 64, 2))
-    assert not np.array_equal(a, _core.sampler_points(SOBOL, 1, 1, 64, 2))
-    assert np.array_equal(a, _core.sampler_points(SOBOL, 0, 1, 64, 2))
+    a = _testing.sampler_points(SOBOL, 0, 1, 64, 2)
+    assert not np.array_equal(a, _testing.sampler_points(SOBOL, 0, 2, 64, 2))
+    assert not np.array_equal(a, _testing.sampler_points(SOBOL, 1, 1, 64, 2))
+    assert np.array_equal(a, _testing.sampler_points(SOBOL, 0, 1, 64, 2))
 
 
 def test_sobol_render_is_unbiased_and_less_noisy() -> None:

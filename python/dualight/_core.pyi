@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'check_mlt_bidirectional_density', 'check_mlt_bootstrap_paths', 'check_mlt_perturbation_densities', 'check_mlt_single_mutation', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'sampler_points', 'start_chains', 'trace_camera_hits', 'verify_random_subpaths', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -680,22 +680,6 @@ def cast_random_rays(scene: Scene, camera: PinholeCamera, n_rays: typing.Support
     """
     Embree-only cast of incoherent rays (no shading): the ray-tracing limit for this scene.
     """
-def check_mlt_bidirectional_density(scene: Scene, camera: PinholeCamera, options: MltOptions, vertex: typing.SupportsInt | typing.SupportsIndex, proposals: typing.SupportsInt | typing.SupportsIndex, region_points: typing.SupportsInt | typing.SupportsIndex = 200000) -> dict:
-    """
-    For tests: bidirectional proposals that regenerate x_vertex only, from one path (mlt_checks.h); the sum of inv_t over `proposals` estimates the region's `area`.
-    """
-def check_mlt_bootstrap_paths(scene: Scene, camera: PinholeCamera, options: MltOptions, count: typing.SupportsInt | typing.SupportsIndex) -> list:
-    """
-    For tests: (s, t, BDPT's unweighted luminance estimate, the same from the complete path's f*/p) for every strategy of `count` bootstrap samples.
-    """
-def check_mlt_perturbation_densities(scene: Scene, camera: PinholeCamera, options: MltOptions, mutation: str, samples: typing.SupportsInt | typing.SupportsIndex, proposals: typing.SupportsInt | typing.SupportsIndex, film_step: typing.SupportsFloat | typing.SupportsIndex = 0.02, angle_step: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> list:
-    """
-    For tests: (block, specular vertices, reported density, finite-difference density, |cos| at the moved vertex) per block of each comparable perturbation proposal (mlt_checks.h).
-    """
-def check_mlt_single_mutation(scene: Scene, camera: PinholeCamera, options: MltOptions, mutation: str, transition_ratio: str = 'used') -> dict:
-    """
-    For tests: MLT whose chains use only `mutation` (bidirectional included: a chain that is not ergodic but keeps f invariant), staying put on paths it does not suit. transition_ratio 'ignored' or 'inverted' breaks the acceptance on purpose (a negative control). Returns render_mlt's dict.
-    """
 def compute_form_factors(patches: Scene, options: FormFactorOptions, progress: typing.Any = None, *, scatters: typing.Annotated[numpy.typing.ArrayLike, numpy.uint8] | None = None, receivers: typing.Annotated[numpy.typing.ArrayLike, numpy.uint8] | None = None) -> tuple[FormFactors, dict]:
     """
     Form factors between the triangles of `patches` (one patch each): (FormFactors, stats). Every row, or with scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only those of non-zero importance for that view (form_factors.h).
@@ -752,10 +736,6 @@ def run_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, start: 
     """
     Chains [first_chain, first_chain + chain_count) of a start-up; its `interrupted` is True after Ctrl-C.
     """
-def sampler_points(sampler: SamplerType, seed: typing.SupportsInt | typing.SupportsIndex, pixel: typing.SupportsInt | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, dimensions_2d: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
-    """
-    The 2D samples a sampler gives one pixel: count x dimensions_2d x 2 (for tests and plots).
-    """
 @typing.overload
 def start_chains(scene: Scene, camera: PinholeCamera, options: PssmltOptions, progress: typing.Any = None) -> ChainStartUp:
     """
@@ -769,10 +749,6 @@ def start_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, progr
 def trace_camera_hits(scene: Scene, camera: PinholeCamera, samples_per_axis: typing.SupportsInt | typing.SupportsIndex = 2, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
     """
     Triangle hit by each stratified camera sample, (H x W x S int32, -1 = miss) and its barycentrics.
-    """
-def verify_random_subpaths(scene: Scene, camera: PinholeCamera, count: typing.SupportsInt | typing.SupportsIndex, max_depth: typing.SupportsInt | typing.SupportsIndex = 8, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
-    """
-    Builds `count` camera and light subpaths and recomputes their cached densities and throughputs (verify()); returns the largest relative differences.
     """
 def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], metadata: collections.abc.Mapping[str, str] = {}) -> None:
     """

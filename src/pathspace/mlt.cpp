@@ -12,11 +12,10 @@
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
-#include "core/sampler.h"
-#include "pathspace/bdpt_sample.h"
 #include "pathspace/chain_rounds.h"
 #include "pathspace/chain_split.h"
 #include "pathspace/direct_light.h"
+#include "pathspace/mlt_bootstrap.h"
 #include "pathspace/mutations/bidirectional.h"
 #include "pathspace/mutations/caustic_perturbation.h"
 #include "pathspace/mutations/lens_perturbation.h"
@@ -52,53 +51,6 @@ bool evaluate(const PinholeCamera& camera, const PixelImportance& importance, St
   s.pixel = pixel_of(camera, raster);
   s.target = s.f.f_lum * importance(s.pixel);
   return s.target > 0.0;
-}
-
-BdptOptions bootstrap_bdpt(const MltOptions& opt) {
-  BdptOptions bdpt;
-  bdpt.max_depth = opt.max_depth;
-  bdpt.rr_depth = opt.rr_depth;
-  bdpt.heuristic = opt.heuristic;
-  bdpt.min_depth = opt.direct_spp > 0 ? 3 : 1;
-  return bdpt;
-}
-
-// One BDPT sample of the bootstrap (a uniform film position, every strategy); calls
-// visit(s, t, unweighted, mis weight, sampled, raster) for each strategy that carries light.
-// Values of strategies with t >= 2 are scaled by the pixel count: they estimate the whole
-// film's integral.
-template <class Visit>
-void bootstrap_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt, uint64_t seed,
-                      uint64_t index, Subpaths& paths, TraceCounters& counters, const Visit& visit) {
-  IndependentSampler sampler(seed, index, 0);
-  const Point2 film = camera.film_position(sampler.next_2d());
-  const WalkLimits limits{bdpt.max_depth, bdpt.rr_depth};
-  camera_subpath(scene, camera, film.u, film.v, sampler, limits, paths.camera, counters);
-  light_subpath(scene, sampler, limits, paths.light, counters);
-  const float pixels = static_cast<float>(camera.width()) * static_cast<float>(camera.height());
-  for_each_strategy(scene, camera, bdpt, paths, sampler, counters,
-                    [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
-                      if (t >= 2) c *= pixels;
-                      visit(s, t, c, mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, bdpt.heuristic),
-                            sampled, t == 1 ? raster : film);
-                    });
-}
-
-// The complete path (emitter first) that strategy (s, t) made.
-Path strategy_path(const Subpaths& paths, const Vertex& sampled, int s, int t) {
-  Path z;
-  if (s == 1) {
-    z.push_back(sampled);
-  } else {
-    z.assign(paths.light.begin(), paths.light.begin() + s);
-  }
-  if (t == 1) {
-    z.push_back(sampled);  // the camera vertex
-  } else {
-    for (int i = t - 1; i >= 0; --i) z.push_back(paths.camera[i]);
-  }
-  z.front().type = VertexType::Light;
-  return z;
 }
 
 double weight_of(const Color& c, float mis) {
@@ -214,19 +166,6 @@ class MutationSet {
   std::vector<std::string> skipped_;
 };
 
-// T(y -> x) / T(x -> y) as the acceptance uses it; the wrong forms are negative controls.
-double transition_ratio(TransitionRatio use, const Transition& t) {
-  switch (use) {
-    case TransitionRatio::Ignored:
-      return 1.0;
-    case TransitionRatio::Inverted:
-      return t.forward / t.reverse;
-    case TransitionRatio::Used:
-      break;
-  }
-  return t.reverse / t.forward;
-}
-
 struct Chain {
   Pcg32 rng;
   State current;
@@ -334,9 +273,12 @@ ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const
   return start;
 }
 
-ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+namespace {
+
+// mlt_chains, with render_mlt's hooks.
+ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
                      const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
-                     const std::function<double()>& elapsed) {
+                     const std::function<double()>& elapsed, const MltChainHooks& hooks) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
   ChainPart part = empty_part(start, first, count);
   first = part.first_chain;
@@ -404,7 +346,8 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
         if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
             evaluate(camera, importance, proposed) && t.forward > 0.0) {
           const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-          const double t_ratio = transition_ratio(opt.transition_ratio, t);
+          // T(y -> x) / T(x -> y) of the Metropolis-Hastings acceptance; only a test hook replaces it.
+          const double t_ratio = hooks.transition_ratio ? hooks.transition_ratio(t) : t.reverse / t.forward;
           const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
           a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
         } else {
@@ -453,6 +396,14 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
   return part;
 }
 
+}  // namespace
+
+ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
+                     const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
+                     const std::function<double()>& elapsed) {
+  return run_chains(scene, camera, opt, start, first, count, control, elapsed, {});
+}
+
 PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const ChainPart& part,
                          const MltOptions& opt, const PinholeCamera& camera) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
@@ -485,55 +436,12 @@ PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const Ch
 }
 
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
-                         RenderControl& control) {
+                         RenderControl& control, const MltChainHooks& hooks) {
   const std::function<double()> elapsed = Stopwatch();
   const ChainStartUp start = mlt_start_up(scene, camera, opt, control, elapsed);
-  const ChainPart part = mlt_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed);
+  const ChainPart part = run_chains(scene, camera, opt, start, 0, start.chains(), control, elapsed, hooks);
   PathMltResult out = mlt_finish(scene, start, part, opt, camera);
   out.result.stats.seconds = elapsed();
-  return out;
-}
-
-namespace {
-
-// Every strategy's complete path of the first `count` bootstrap samples (for the test hooks):
-// visit(s, t, unweighted contribution, path).
-template <class Visit>
-void for_each_bootstrap_path(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt, size_t count,
-                             const Visit& visit) {
-  const BdptOptions bdpt = bootstrap_bdpt(opt);
-  Subpaths paths;
-  TraceCounters counters;
-  for (size_t i = 0; i < count; ++i) {
-    bootstrap_sample(scene, camera, bdpt, opt.seed, i, paths, counters,
-                     [&](int s, int t, const Color& c, float, const Vertex& sampled, const Point2&) {
-                       visit(s, t, c, strategy_path(paths, sampled, s, t));
-                     });
-  }
-}
-
-}  // namespace
-
-std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,
-                                                 const MltOptions& opt, size_t count) {
-  std::vector<StrategyCheck> checks;
-  for_each_bootstrap_path(scene, camera, opt, count, [&](int s, int t, const Color& c, const Path& z) {
-    Point2 raster{};
-    const PathValue f = path_contribution(camera, z, raster);
-    double p = 1.0;
-    for (int v = 0; v < s; ++v) p *= pdf_from_light(scene, z, static_cast<size_t>(v));
-    for (size_t v = static_cast<size_t>(s); v + 1 < z.size(); ++v) p *= pdf_from_eye(camera, z, v);
-    checks.push_back({s, t, static_cast<double>(luminance(c)), f.f_lum / p});
-  });
-  return checks;
-}
-
-std::vector<Path> bootstrap_paths(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
-                                  size_t count) {
-  std::vector<Path> out;
-  for_each_bootstrap_path(scene, camera, opt, count, [&](int, int, const Color& c, const Path& z) {
-    if (luminance(c) > 0.f) out.push_back(z);
-  });
   return out;
 }
 

@@ -27,10 +27,6 @@
 
 namespace dualight {
 
-// How the acceptance uses the mutation's transition ratio T(y -> x) / T(x -> y). Only Used is
-// correct; the others exist for tests (mlt_checks.h) as negative controls, never for users.
-enum class TransitionRatio { Used, Ignored, Inverted };
-
 struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampler is unused
   uint32_t bootstrap = 100000;
   uint32_t chains = 256;
@@ -50,8 +46,15 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   // smoothed estimate of the pixel's brightness (mlt_importance.h), from the direct light and
   // `bootstrap` / 4 pilot BDPT samples of their own.
   MltImportance importance = MltImportance::Luminance;
-  // Not bound for users: tests set it to break detailed balance on purpose (mlt_checks.h).
-  TransitionRatio transition_ratio = TransitionRatio::Used;
+};
+
+struct Transition;  // pathspace/mutations/mutation.h
+
+// A seam for the test module only (tests/hooks/mlt_checks.h: negative controls that break
+// detailed balance on purpose); renders pass none and their acceptance is Veach's.
+struct MltChainHooks {
+  // When set, stands for T(y -> x) / T(x -> y) in the acceptance.
+  double (*transition_ratio)(const Transition& t) = nullptr;
 };
 
 
@@ -62,7 +65,7 @@ struct PathMltResult {
 };
 
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
-                         RenderControl& control);
+                         RenderControl& control, const MltChainHooks& hooks = {});
 
 // render_mlt in the three parts of chain_split.h, for renders split into tasks; as
 // pssmlt_start_up, pssmlt_chains and pssmlt_finish.
@@ -73,25 +76,5 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
                      const std::function<double()>& elapsed);
 PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const ChainPart& part,
                          const MltOptions& options, const PinholeCamera& camera);
-
-}  // namespace dualight
-
-namespace dualight {
-
-// For tests: every strategy of `count` bootstrap BDPT samples, its unweighted estimate's
-// luminance as BDPT computed it, and the same recomputed from the strategy's complete path as
-// f*(z) / p_{s,t}(z) with full_path.h's contribution and densities (equal without Russian
-// roulette).
-struct StrategyCheck {
-  int s = 0, t = 0;
-  double bdpt = 0.0, recomputed = 0.0;
-};
-std::vector<StrategyCheck> check_bootstrap_paths(const Scene& scene, const PinholeCamera& camera,
-                                                 const MltOptions& options, size_t count);
-
-// For tests: the complete paths of every strategy that carries light in `count` bootstrap
-// samples (the chains' start candidates, not resampled).
-std::vector<Path> bootstrap_paths(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
-                                  size_t count);
 
 }  // namespace dualight

@@ -1,6 +1,6 @@
 // Test hooks for path-space MLT's mutations (issue 6: each mutation on its own keeps the target
-// density, and the transition densities it reports are right). Not part of the public API: the
-// Python module binds them with a leading `check_`.
+// density, and the transition densities it reports are right). Not part of the product: the
+// test module dualight._testing (bind_mlt.cpp) binds them with a leading `check_mlt_`.
 //
 // render_single_mutation: MLT whose chains use one mutation only (the others get weight 0, the
 // bidirectional one too) and stay put on paths it does not suit. The chains start from paths
@@ -22,6 +22,10 @@
 #include "pathspace/mlt.h"
 
 namespace dualight {
+
+// How the acceptance uses the mutation's transition ratio T(y -> x) / T(x -> y). Only Used is
+// correct (render_mlt's own); the others are negative controls (through MltChainHooks).
+enum class TransitionRatio { Used, Ignored, Inverted };
 
 PathMltResult render_single_mutation(const Scene& scene, const PinholeCamera& camera, MltOptions options,
                                      const std::string& mutation, TransitionRatio transition_ratio);

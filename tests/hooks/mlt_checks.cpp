@@ -1,15 +1,36 @@
-#include "pathspace/mlt_checks.h"
+#include "hooks/mlt_checks.h"
 
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "core/frame.h"
+#include "hooks/bootstrap_checks.h"
 #include "pathspace/mutations/bidirectional.h"
 #include "pathspace/mutations/caustic_perturbation.h"
 #include "pathspace/mutations/lens_perturbation.h"
 
 namespace dualight {
+
+namespace {
+
+// The negative controls' acceptance ratios (TransitionRatio::Ignored, Inverted).
+double ratio_ignored(const Transition&) { return 1.0; }
+double ratio_inverted(const Transition& t) { return t.forward / t.reverse; }
+
+MltChainHooks hooks_of(TransitionRatio transition_ratio) {
+  switch (transition_ratio) {
+    case TransitionRatio::Ignored:
+      return {ratio_ignored};
+    case TransitionRatio::Inverted:
+      return {ratio_inverted};
+    case TransitionRatio::Used:
+      break;
+  }
+  return {};  // render_mlt's own acceptance
+}
+
+}  // namespace
 
 PathMltResult render_single_mutation(const Scene& scene, const PinholeCamera& camera, MltOptions opt,
                                      const std::string& mutation, TransitionRatio transition_ratio) {
@@ -24,9 +45,8 @@ PathMltResult render_single_mutation(const Scene& scene, const PinholeCamera& ca
     found = found || chosen;
   }
   if (!found) throw std::invalid_argument("unknown mutation: " + mutation);
-  opt.transition_ratio = transition_ratio;
   RenderControl control;
-  return render_mlt(scene, camera, opt, control);
+  return render_mlt(scene, camera, opt, control, hooks_of(transition_ratio));
 }
 
 namespace {
