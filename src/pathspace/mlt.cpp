@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "core/stopwatch.h"
 #include "pathspace/chain_rounds.h"
+#include "pathspace/chain_runner.h"
 #include "pathspace/chain_split.h"
 #include "pathspace/direct_light.h"
 #include "pathspace/mlt_bootstrap.h"
@@ -171,6 +172,56 @@ struct Chain {
   State current;
 };
 
+// One chain's mutations of a round: a mutation chosen among those that suit the path, its
+// proposal accepted by Metropolis-Hastings with the mutation's transition densities and
+// selection probabilities, both states splatted with their expected weights.
+struct MltStep {
+  const PinholeCamera& camera;
+  const MutationSet& mutations;
+  const PixelImportance& importance;
+  const MltChainHooks& hooks;
+  Chain& chain;
+  std::vector<MutationStats>& counts;
+  float scale;  // b: a state splats f / f* times b
+  MutationContext ctx;
+  State proposed{};
+
+  void operator()(SplatList& splats) {
+    State& x = chain.current;
+    double select_x = 0.0;
+    const size_t k = mutations.select(x.path, chain.rng, select_x);
+    if (k == mutations.size()) {
+      // No enabled mutation suits x (only when bidirectional is off, in tests): staying
+      // put is a kernel that keeps f invariant too.
+      splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
+      return;
+    }
+    MutationStats& stat = counts[k];
+    ++stat.proposed;
+    Transition t;
+    float a = 0.f;
+    if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) && evaluate(camera, importance, proposed) &&
+        t.forward > 0.0) {
+      const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
+      // T(y -> x) / T(x -> y) of the Metropolis-Hastings acceptance; only a test hook replaces it.
+      const double t_ratio = hooks.transition_ratio ? hooks.transition_ratio(t) : t.reverse / t.forward;
+      const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
+      a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
+    } else {
+      ++stat.failed;
+    }
+    // Expected values: each state's f / f* times b, weighted by its acceptance odds (f.color
+    // is f / f_lum; f* = f_lum times the pixel's factor).
+    if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a / importance(proposed.pixel)));
+    if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a) / importance(x.pixel)));
+    if (a > 0.f && chain.rng.next_float() < a) {
+      std::swap(x, proposed);
+      ++stat.accepted;
+    }
+  }
+  void end_round(const SplatList&) const {}
+};
+
 // Chain `id`'s start: a bootstrap sample in proportion to its weight, then one of its
 // strategies in proportion to theirs (at most 16 tries); its target is 0 if none was found.
 Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOptions& bdpt, const MltOptions& opt,
@@ -313,68 +364,21 @@ ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltO
   control.total.store(rounds.range_target());
   pop.metropolis = ExactSums(3 * pixels, population.b_splat);
   const float scale = static_cast<float>(population.b_splat);
-  std::vector<SplatList> splat_lists(chains.size());
   std::vector<std::vector<MutationStats>> counts(chains.size(), part.mutations);
-  std::vector<uint64_t> done(chains.size(), 0);
   uint64_t rejected = 0;  // splats too large for the exact sums
-  while (rounds.next(elapsed(), control)) {
-    parallel_for_each_index(opt.threads, chains.size(), [&](size_t c) {
-      const uint64_t share = rounds.share(c);
-      Chain& chain = chains[c];
-      TraceCounters counters = rays.local();
-      const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
-      SplatList& splats = splat_lists[c];
-      splats.clear();
-      done[c] = 0;
-      State proposed;
-      for (uint64_t m = 0; m < share; ++m) {
-        if ((m & 63u) == 0 && control.cancelled()) break;
-        ++done[c];
-        State& x = chain.current;
-        double select_x = 0.0;
-        const size_t k = mutations.select(x.path, chain.rng, select_x);
-        if (k == mutations.size()) {
-          // No enabled mutation suits x (only when bidirectional is off, in tests): staying
-          // put is a kernel that keeps f invariant too.
-          splats.add(x.pixel, x.f.color * (scale / importance(x.pixel)));
-          continue;
+  run_chain_rounds(
+      opt.threads, chains.size(), rounds, elapsed, control, rays,
+      [&](size_t c, TraceCounters& counters) {
+        return MltStep{camera,    mutations, importance,
+                       hooks,     chains[c], counts[c],
+                       scale,     MutationContext{scene, camera, bdpt.min_depth, opt.max_depth, counters}};
+      },
+      [&](size_t, const SplatList& splats) {
+        for (const Splat& sp : splats.splats()) {
+          for (int ch = 0; ch < 3; ++ch) rejected += !pop.metropolis.add(3 * sp.pixel + ch, sp.value[ch]);
         }
-        MutationStats& stat = counts[c][k];
-        ++stat.proposed;
-        Transition t;
-        float a = 0.f;
-        if (mutations[k].propose(ctx, x.path, chain.rng, proposed.path, t) &&
-            evaluate(camera, importance, proposed) && t.forward > 0.0) {
-          const double select_y = mutations.suitable_weight(k, proposed.path) / mutations.total(proposed.path);
-          // T(y -> x) / T(x -> y) of the Metropolis-Hastings acceptance; only a test hook replaces it.
-          const double t_ratio = hooks.transition_ratio ? hooks.transition_ratio(t) : t.reverse / t.forward;
-          const double ratio = (proposed.target * t_ratio * select_y) / (x.target * select_x);
-          a = std::isfinite(ratio) ? static_cast<float>(std::min(1.0, ratio)) : 0.f;
-        } else {
-          ++stat.failed;
-        }
-        // Expected values: each state's f / f* times b, weighted by its acceptance odds (f.color
-        // is f / f_lum; f* = f_lum times the pixel's factor).
-        if (a > 0.f) splats.add(proposed.pixel, proposed.f.color * (scale * a / importance(proposed.pixel)));
-        if (a < 1.f) splats.add(x.pixel, x.f.color * (scale * (1.f - a) / importance(x.pixel)));
-        if (a > 0.f && chain.rng.next_float() < a) {
-          std::swap(x, proposed);
-          ++stat.accepted;
-        }
-      }
-      rays.add(counters);
-      control.done.fetch_add(done[c], std::memory_order_relaxed);
-    });
-    uint64_t round = 0;
-    for (size_t c = 0; c < chains.size(); ++c) {
-      for (const Splat& sp : splat_lists[c].splats()) {
-        for (int ch = 0; ch < 3; ++ch) rejected += !pop.metropolis.add(3 * sp.pixel + ch, sp.value[ch]);
-      }
-      rejected += splat_lists[c].invalid();
-      round += done[c];
-    }
-    if (!rounds.finish(round, elapsed(), control)) break;
-  }
+        rejected += splats.invalid();
+      });
   pop.mutations = rounds.total();
   for (const auto& chain_counts : counts) {
     for (size_t i = 0; i < chain_counts.size(); ++i) {
