@@ -26,6 +26,7 @@ MODULES = (
     "dualight.bench",
     "dualight.radiosity",
     "dualight.radiosity.solution",
+    "dualight.radiosity.solve",
     "dualight.radiosity.solvers",
     "dualight.radiosity.patches",
     "dualight.radiosity.hierarchical",

@@ -38,6 +38,7 @@ import numpy as np
 
 from dualight import _core
 from dualight.radiosity.patches import PatchMesh, require_diffuse
+from dualight.radiosity.solution import Solution, camera_samples
 from dualight.scene import Camera, Scene
 
 Oracle = Literal["bf", "importance"]
@@ -74,8 +75,6 @@ def receiver_samples(
     Each sample carries ``1 / (samples in the window * pi)`` of the measurement, the mean
     pixel value of the (windowed) image, as :func:`dualight.radiosity.receiver` defines it.
     """
-    from dualight.radiosity.solution import camera_samples
-
     positions, triangles, _ = scene.triangle_arrays()
     prim, bary, front = camera_samples(
         scene._compile(),
@@ -194,10 +193,8 @@ class HierarchicalSolver:
         """Every link: receiver and source input triangles and element centroids, and F."""
         return self._core.links()
 
-    def solution(self) -> Any:
+    def solution(self) -> Solution:
         """The current leaves as a :class:`dualight.radiosity.Solution`."""
-        from dualight.radiosity.solution import Solution
-
         leaves = self._core.leaves()
         _, _, mesh_of_triangle = self.scene.triangle_arrays()
         n = len(leaves["area"])
