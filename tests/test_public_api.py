@@ -16,6 +16,7 @@ MODULES = (
     "dualight",
     "dualight.scene",
     "dualight.render",
+    "dualight.methods",
     "dualight.image",
     "dualight.materials",
     "dualight.metrics",

@@ -18,6 +18,10 @@ from dualight.radiosity.solution import Solution, receiver
 from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
 from dualight.scene import Camera, Scene
 
+# The core's defaults of the options these functions pass on.
+_FORM_FACTORS = _core.FormFactorOptions()
+_HIERARCHICAL = _core.HierarchicalOptions()
+
 
 class ConvergenceWarning(RuntimeWarning):
     """An iterative solver stopped at max_iter with its residual above tol."""
@@ -26,12 +30,12 @@ class ConvergenceWarning(RuntimeWarning):
 def form_factors(
     patches: PatchMesh,
     *,
-    quadrature: int = 3,
-    shadow_rays: int = 4,
-    seed: int = 0,
-    threads: int = 0,
+    quadrature: int = _FORM_FACTORS.quadrature,
+    shadow_rays: int = _FORM_FACTORS.shadow_rays,
+    seed: int = _FORM_FACTORS.seed,
+    threads: int = _FORM_FACTORS.threads,
     progress: Callable[[int, int], None] | None = None,
-    skip: bool = True,
+    skip: bool = _FORM_FACTORS.skip_unneeded,
     receivers: np.ndarray | None = None,
 ) -> tuple[_core.FormFactors, dict[str, Any]]:
     """Form factors of patch pairs (sparse) and stats (pairs, rays, seconds, rays/s,
@@ -45,9 +49,9 @@ def form_factors(
     reciprocity and closure checks then cover the rows that were computed.
     """
     options = _core.FormFactorOptions(
-        quadrature=quadrature, shadow_rays=shadow_rays, seed=seed, threads=threads
+        quadrature=quadrature, shadow_rays=shadow_rays, seed=seed, threads=threads,
+        skip_unneeded=skip,
     )
-    options.skip_unneeded = skip
     scatters = receivers_arg = None
     if skip:
         scatters = (np.max(patches.reflectance, axis=1) > 0).astype(np.uint8)
@@ -113,17 +117,17 @@ def solve(
     importance: bool = True,
     camera: Camera | None = None,
     window: tuple[int, int, int, int] | None = None,
-    quadrature: int = 3,
-    shadow_rays: int = 4,
+    quadrature: int = _FORM_FACTORS.quadrature,
+    shadow_rays: int = _FORM_FACTORS.shadow_rays,
     seed: int = 0,
     threads: int | None = None,
     progress: bool | Callable[[int, int], None] = False,
     patches: PatchMesh | None = None,
     precomputed: tuple[_core.FormFactors, dict[str, Any]] | None = None,
-    oracle: str = "importance",
-    epsilon: float = 1e-3,
+    oracle: str = _HIERARCHICAL.oracle.name,
+    epsilon: float = _HIERARCHICAL.epsilon,
     min_area: float | None = None,
-    max_links: int = 20_000_000,
+    max_links: int = _HIERARCHICAL.max_links,
     view_only: bool = False,
     skip: bool = True,
 ) -> Solution:
