@@ -17,6 +17,7 @@ MODULES = (
     "dualight.scene",
     "dualight.render",
     "dualight.methods",
+    "dualight.plotting",
     "dualight.image",
     "dualight.materials",
     "dualight.metrics",
