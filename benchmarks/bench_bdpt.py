@@ -36,6 +36,7 @@ import numpy as np
 import dualight
 from dualight import metrics, scenes
 from dualight import mitsuba as dmi
+from dualight.plotting import curves_by, save_relmse_against_time
 
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
@@ -185,25 +186,13 @@ def main() -> None:
     RESULTS.mkdir(parents=True, exist_ok=True)
     (RESULTS / f"bench_bdpt{suffix}.json").write_text(json.dumps(summary, indent=2) + "\n")
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = list(summary["scenes"])
-    fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 4.2), squeeze=False)
-    for ax, name in zip(axes[0], names, strict=True):
-        runs = summary["scenes"][name]["runs"]
-        for renderer in sorted({r["renderer"] for r in runs}):
-            rs = sorted((r for r in runs if r["renderer"] == renderer), key=lambda r: r["seconds"])
-            ax.loglog([r["seconds"] for r in rs], [r["relmse"] for r in rs], "o-", label=renderer)
-        ax.set_title(f"{name} 64x64, max_depth {summary['scenes'][name]['max_depth']}")
-        ax.set_xlabel("render time (s)")
-        ax.set_ylabel("relMSE (reference noise removed)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(RESULTS / f"bench_bdpt{suffix}.png", dpi=110)
+    panels = {
+        f"{name} 64x64, max_depth {entry['max_depth']}": curves_by(entry["runs"], "renderer")
+        for name, entry in summary["scenes"].items()
+    }
+    save_relmse_against_time(
+        panels, RESULTS / f"bench_bdpt{suffix}.png", ylabel="relMSE (reference noise removed)"
+    )
     print(f"wrote {RESULTS / f'bench_bdpt{suffix}.json'} and bench_bdpt{suffix}.png")
 
 

@@ -46,6 +46,8 @@ from typing import Any
 import numpy as np
 
 import dualight
+from dualight.methods import METROPOLIS
+from dualight.plotting import save_relmse_against_time
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
@@ -57,12 +59,12 @@ from bench_bdpt import (  # noqa: E402
     load_reference,
 )
 
-METHODS = ("path", "bdpt", "pssmlt", "mmlt", "mlt", "mlt_flat")
-MLT_METHODS = ("pssmlt", "mmlt", "mlt", "mlt_flat")
 # Labels that are a method with options: path-space MLT with its flattened importance.
 VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
     "mlt_flat": ("mlt", {"mlt": {"importance": "flattened"}}),
 }
+MLT_METHODS = (*METROPOLIS, *VARIANTS)
+METHODS = ("path", "bdpt", *MLT_METHODS)
 # (faster?, than) pairs whose equal-time efficiency ratio is reported.
 RATIOS = [
     ("mlt", "bdpt"),
@@ -318,38 +320,23 @@ def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[s
 
 
 def plot(summary: dict[str, Any], path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = list(summary["scenes"])
-    if not names:
-        return
-    colours = {m: f"C{i}" for i, m in enumerate(METHODS)}
-    fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 4.2), squeeze=False)
-    for ax, name in zip(axes[0], names, strict=True):
-        runs = summary["scenes"][name]["curves"]
-        for method in METHODS:
-            rs = sorted((r for r in runs if r["method"] == method), key=lambda r: r["seconds"])
-            if not rs:
-                continue
-            label = method + (" (calibrated mpp)" if rs[0]["budget_by"] != "time_limit" else "")
-            ax.loglog(
-                [r["seconds"] for r in rs],
-                [r["relmse"] for r in rs],
-                "o-",
-                color=colours[method],
-                label=label,
-            )
-        ax.set_title(f"{name} 64x64, max_depth {summary['scenes'][name]['max_depth']}")
-        ax.set_xlabel("render time (s)")
-        ax.set_ylabel(f"relMSE (reference noise removed; mean of {summary['seeds']} seeds)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    panels, colours = {}, {}
+    for name, entry in summary["scenes"].items():
+        curves = {}
+        for i, method in enumerate(METHODS):
+            runs = [r for r in entry["curves"] if r["method"] == method]
+            if runs:
+                calibrated = runs[0]["budget_by"] != "time_limit"
+                label = method + (" (calibrated mpp)" if calibrated else "")
+                curves[label] = [(r["seconds"], r["relmse"]) for r in runs]
+                colours[label] = f"C{i}"
+        panels[f"{name} 64x64, max_depth {entry['max_depth']}"] = curves
+    save_relmse_against_time(
+        panels,
+        path,
+        ylabel=f"relMSE (reference noise removed; mean of {summary['seeds']} seeds)",
+        colours=colours,
+    )
 
 
 def main() -> None:

@@ -31,6 +31,7 @@ import numpy as np
 import dualight
 from dualight import _core, metrics
 from dualight import mitsuba as dmi
+from dualight.plotting import save_relmse_against_time
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
@@ -198,29 +199,22 @@ def main() -> None:
         f"({limit['rays_per_second'] / 1e6:.1f} M rays/s)"
     )
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+    curves, styles = {}, {}
     for name in ["dualight"] + [f"mitsuba_{v}" for v in variants]:
         for sampler in sorted({r["sampler"] for r in runs if r["renderer"] == name}):
+            label = f"{name} ({sampler})"
             rs = [r for r in runs if r["renderer"] == name and r["sampler"] == sampler]
-            style = "o-" if sampler == "independent" else "s--"
-            ax.loglog(
-                [r["seconds"] for r in rs],
-                [r["relmse"] for r in rs],
-                style,
-                label=f"{name} ({sampler})",
-            )
-    ax.set_xlabel("render time (s)")
-    ax.set_ylabel("relMSE vs reference")
-    ax.set_title(f"Cornell box {res[0]}x{res[1]}, path tracing, max_depth {args.max_depth}")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(RESULTS / "bench_path.png", dpi=120)
+            curves[label] = [(r["seconds"], r["relmse"]) for r in rs]
+            styles[label] = "o-" if sampler == "independent" else "s--"
+    title = f"Cornell box {res[0]}x{res[1]}, path tracing, max_depth {args.max_depth}"
+    save_relmse_against_time(
+        {title: curves},
+        RESULTS / "bench_path.png",
+        panel_size=(6, 4.5),
+        dpi=120,
+        ylabel="relMSE vs reference",
+        styles=styles,
+    )
     print(f"wrote {RESULTS / 'bench_path.json'} and bench_path.png")
 
 

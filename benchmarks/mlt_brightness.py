@@ -31,12 +31,13 @@ from pathlib import Path
 import numpy as np
 
 import dualight
+from dualight.methods import METROPOLIS
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from bench_bdpt import RESULTS, SCENES, load_reference  # noqa: E402
 
-METHODS = ("pssmlt", "mmlt", "mlt")
+METHODS = METROPOLIS
 
 
 def main() -> None:

@@ -30,13 +30,13 @@ import matplotlib.pyplot as plt
 from _budget import pick
 
 import dualight
-from dualight import bench, radiosity, scenes
+from dualight import bench, plotting, radiosity, scenes
 
 scene = scenes.cornell_box(resolution=(64, 64))
 reference = bench.load_reference("cornell", "test:cornell_64", scene, Path("out/cache"))
 assert reference is not None, "needs the repository's tests/references"
 budgets = pick([0.05, 0.1], [0.25, 0.5, 1.0, 2.0, 4.0])
-methods = pick(("path", "bdpt", "mlt"), ("path", "light", "bdpt", "pssmlt", "mmlt", "mlt"))
+methods = pick(("path", "bdpt", "mlt"), dualight.METHODS)
 
 # %%
 curves = {}
@@ -61,10 +61,8 @@ curves["radiosity (hierarchical)"] = points
 
 # %%
 fig, ax = plt.subplots(figsize=(6.5, 4.5))
-for name, pts in curves.items():
-    ax.loglog([t for t, _ in pts], [e for _, e in pts], "o-", label=name)
-ax.set_xlabel("seconds")
-ax.set_ylabel("relMSE against Mitsuba 3")
-ax.set_title("Cornell box, 64x64, max_depth 8")
-ax.legend(fontsize=8)
+plotting.relmse_against_time(
+    ax, curves, title="Cornell box, 64x64, max_depth 8", xlabel="seconds",
+    ylabel="relMSE against Mitsuba 3",
+)
 plt.show()

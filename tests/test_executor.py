@@ -14,7 +14,7 @@ import pytest
 import dualight
 from dualight import _core, scenes
 from dualight.executor import CHAINS_PER_TASK
-from dualight.render import _estimator
+from dualight.methods import ESTIMATORS
 
 SPP = 40  # blocks of 16, 16 and 8 samples per pixel: a short last block too
 # Small Metropolis renders: 40 chains make tasks of 16, 16 and 8 chains (mmlt: as its path
@@ -191,13 +191,11 @@ def test_any_split_of_the_chains_gives_the_same_image(
     scene: dualight.Scene, method: str, extra: dict[str, object]
 ) -> None:
     """Uneven ranges, a single chain, parts pickled: always the single-process image."""
-    _, options = _estimator(
-        method, spp=MUTATIONS, max_depth=6, rr_depth=5, seed=2, threads=2, time_limit=0.0,
-        sampler="independent", heuristic="power", mlt={**MLT_OPTIONS, **extra},
-    )
+    estimator = ESTIMATORS[method]
+    fields = dict(mutations_per_pixel=MUTATIONS, max_depth=6, seed=2, threads=2)
+    options = estimator.options(**estimator.keywords(fields, {**MLT_OPTIONS, **extra}))
     compiled, camera = scene._compile(), scene.camera._compile()  # type: ignore[union-attr]
-    run = _core.render_mlt if method == "mlt" else _core.render_pssmlt
-    single = run(compiled, camera, options)
+    single = estimator.render(compiled, camera, options)
     start = pickle.loads(pickle.dumps(_core.start_chains(compiled, camera, options)))
     assert start.chains == 40 and not start.cancelled
     cuts = [0, 1, 2, 19, 40]

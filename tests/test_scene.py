@@ -119,6 +119,62 @@ def test_core_options_reject_misspelled_keywords() -> None:
         _core.PathTracerOptions(sp=4)  # typo: an error, never a silent default
 
 
+OPTIONS = (
+    _core.PathTracerOptions,
+    _core.LightTracerOptions,
+    _core.BdptOptions,
+    _core.PssmltOptions,
+    _core.MltOptions,
+    _core.FormFactorOptions,
+    _core.HierarchicalOptions,
+)
+
+
+@pytest.mark.parametrize("cls", OPTIONS, ids=lambda c: c.__name__)
+def test_core_options_bind_each_field_once(cls: type) -> None:
+    """Every options class (src/bindings/options.h) takes exactly its ``_fields``, by keyword
+    only, each a documented read-only property; its repr gives it back field for field."""
+    options = cls()
+    signature = cls.__init__.__doc__.split("\n")[0]
+    for name in cls._fields:
+        assert f" {name}: " in signature, name
+        assert getattr(cls, name).__doc__, name
+        with pytest.raises(AttributeError):
+            setattr(options, name, getattr(options, name))
+    names = {c.__name__: c for c in (*OPTIONS, _core.MisHeuristic, _core.SamplerType)}
+    names["RefinementOracle"] = _core.RefinementOracle
+    again = eval(repr(options), names)  # the repr is Python source
+    assert repr(again) == repr(options) and repr(options).startswith(f"{cls.__name__}(")
+    with pytest.raises(TypeError, match=f"unknown option 'nope' for {cls.__name__}; valid: "):
+        cls(nope=1)
+    with pytest.raises(TypeError):
+        cls(1)  # keywords only
+
+
+def test_core_options_convert_and_check_each_value() -> None:
+    """Names stand for enum members and numpy scalars for numbers; a bad value is a ValueError
+    naming its field (a bool's: a TypeError), and the struct's validate() checks the rest."""
+    o = _core.MltOptions(
+        chains=np.int64(4), heuristic="balance", importance="flattened", lens_subpath=np.float32(1)
+    )
+    assert (o.chains, o.heuristic, o.importance) == (4, _core.MisHeuristic.balance, "flattened")
+    assert o.lens_subpath == 1.0 and _core.MltOptions().importance == "luminance"
+    assert _core.MltOptions(skip_unneeded=np.bool_(False)).skip_unneeded is False
+    for kwargs, error, message in [
+        ({"chains": 0}, ValueError, "chains must be an integer >= 1, got 0"),
+        ({"chains": 2.0}, ValueError, "chains must be an integer >= 1, got 2.0"),
+        ({"seed": 1 << 64}, ValueError, "seed must be an integer <= 18446744073709551615"),
+        ({"angle_max": float("nan")}, ValueError, "angle_max must be a finite number in"),
+        ({"bidirectional": True}, ValueError, "bidirectional must be a finite number > 0"),
+        ({"skip_unneeded": 1}, TypeError, "skip_unneeded must be True or False, got 1"),
+        ({"heuristic": "cubic"}, ValueError, "heuristic must be one of 'power', 'balance'"),
+        ({"angle_min": 0.2}, ValueError, "angle_min < angle_max"),  # validate()
+        ({"mutations_per_pixel": 0}, ValueError, "give spp > 0 or a time_limit"),  # validate()
+    ]:
+        with pytest.raises(error, match=message):
+            _core.MltOptions(**kwargs)
+
+
 def test_compiled_scene_is_cached_and_rebuilt_on_change(tiny_scene) -> None:
     first = tiny_scene._compile()
     assert tiny_scene._compile() is first

@@ -19,7 +19,8 @@ from dualight import io, materials, metrics, radiosity, scenes
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import Dielectric, Diffuse, Material, Mirror
-from dualight.render import METHODS, render
+from dualight.methods import METHODS
+from dualight.render import render
 from dualight.scene import Camera, Mesh, Scene
 
 try:

@@ -14,7 +14,8 @@ import numpy as np
 
 from dualight import scenes
 from dualight.image import Image
-from dualight.render import METHODS, render
+from dualight.methods import METHODS
+from dualight.render import render
 from dualight.scene import Scene
 
 SCENES: dict[str, Callable[[tuple[int, int]], Scene]] = {

@@ -240,47 +240,70 @@ class SamplerType:
         ...
 class PathTracerOptions:
     """
-    Options of the path tracer (keywords only).
+    Options of the path tracer.
     """
-    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0) -> None:
+        """
+        Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        spp: Samples per pixel; 0 = until time_limit.
+        max_depth: Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        rr_depth: Russian roulette from this path vertex on.
+        seed: The image depends on the seed only, not on the threads.
+        threads: Worker threads; 0 = all cores.
+        time_limit: Seconds of wall time; 0 = none.
+        skip_unneeded: Skip work the scene makes pointless; False does it all.
+        sampler: Where the random numbers come from (core/sampler.h).
+        first_sample: First sample index rendered (one task of a split render; see Film).
+        """
+    def __repr__(self) -> str:
         ...
     @property
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
         """
-    @first_sample.setter
-    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
     @property
     def max_depth(self) -> int:
-        ...
+        """
+        Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        """
     @property
     def rr_depth(self) -> int:
-        ...
+        """
+        Russian roulette from this path vertex on.
+        """
     @property
     def sampler(self) -> SamplerType:
-        ...
+        """
+        Where the random numbers come from (core/sampler.h).
+        """
     @property
     def seed(self) -> int:
-        ...
+        """
+        The image depends on the seed only, not on the threads.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip work the scene makes pointless (default True); False does it all.
+        Skip work the scene makes pointless; False does it all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
     @property
     def spp(self) -> int:
-        ...
+        """
+        Samples per pixel; 0 = until time_limit.
+        """
     @property
     def threads(self) -> int:
-        ...
+        """
+        Worker threads; 0 = all cores.
+        """
     @property
     def time_limit(self) -> float:
-        ...
+        """
+        Seconds of wall time; 0 = none.
+        """
 class MisHeuristic:
     """
     Members:
@@ -328,76 +351,388 @@ class MisHeuristic:
         ...
 class LightTracerOptions:
     """
-    Options of the light tracer (keywords only).
+    Options of the light tracer.
     """
-    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0) -> None:
+        """
+        Options of the light tracer. Keywords only: an option left out keeps its default above (the C++ LightTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        spp: Particles per pixel (spp x pixels particles in all); 0 = until time_limit.
+        max_depth: Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        rr_depth: Russian roulette from this path vertex on.
+        seed: The image depends on the seed only, not on the threads.
+        threads: Worker threads; 0 = all cores.
+        time_limit: Seconds of wall time; 0 = none.
+        skip_unneeded: Skip work the scene makes pointless; False does it all.
+        sampler: Where the random numbers come from (core/sampler.h).
+        first_sample: First sample index rendered (one task of a split render; see Film).
+        """
+    def __repr__(self) -> str:
         ...
     @property
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
         """
-    @first_sample.setter
-    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+    @property
+    def max_depth(self) -> int:
+        """
+        Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        """
+    @property
+    def rr_depth(self) -> int:
+        """
+        Russian roulette from this path vertex on.
+        """
+    @property
+    def sampler(self) -> SamplerType:
+        """
+        Where the random numbers come from (core/sampler.h).
+        """
+    @property
+    def seed(self) -> int:
+        """
+        The image depends on the seed only, not on the threads.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip work the scene makes pointless (default True); False does it all.
+        Skip work the scene makes pointless; False does it all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def spp(self) -> int:
+        """
+        Particles per pixel (spp x pixels particles in all); 0 = until time_limit.
+        """
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
+    @property
+    def time_limit(self) -> float:
+        """
+        Seconds of wall time; 0 = none.
+        """
 class BdptOptions:
     """
-    Options of bidirectional path tracing (keywords only).
+    Options of bidirectional path tracing.
     """
-    def __init__(self, *, spp: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, sampler: SamplerType = SamplerType.independent, heuristic: MisHeuristic = MisHeuristic.power, strategy_images: bool = False) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategy_images')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategy_images: bool = False) -> None:
+        """
+        Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        spp: Samples per pixel; 0 = until time_limit.
+        max_depth: Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        rr_depth: Russian roulette from this path vertex on.
+        seed: The image depends on the seed only, not on the threads.
+        threads: Worker threads; 0 = all cores.
+        time_limit: Seconds of wall time; 0 = none.
+        skip_unneeded: Skip work the scene makes pointless; False does it all.
+        sampler: Where the random numbers come from (core/sampler.h).
+        first_sample: First sample index rendered (one task of a split render; see Film).
+        heuristic: How the strategies' samples are weighted (MIS).
+        strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
+        """
+    def __repr__(self) -> str:
         ...
     @property
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
         """
-    @first_sample.setter
-    def first_sample(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+    @property
+    def heuristic(self) -> MisHeuristic:
+        """
+        How the strategies' samples are weighted (MIS).
+        """
+    @property
+    def max_depth(self) -> int:
+        """
+        Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        """
+    @property
+    def rr_depth(self) -> int:
+        """
+        Russian roulette from this path vertex on.
+        """
+    @property
+    def sampler(self) -> SamplerType:
+        """
+        Where the random numbers come from (core/sampler.h).
+        """
+    @property
+    def seed(self) -> int:
+        """
+        The image depends on the seed only, not on the threads.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip work the scene makes pointless (default True); False does it all.
+        Skip work the scene makes pointless; False does it all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def spp(self) -> int:
+        """
+        Samples per pixel; 0 = until time_limit.
+        """
+    @property
+    def strategy_images(self) -> bool:
+        """
+        Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
+        """
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
+    @property
+    def time_limit(self) -> float:
+        """
+        Seconds of wall time; 0 = none.
+        """
 class PssmltOptions:
     """
-    Options of primary-sample-space MLT (keywords only).
+    Options of primary-sample-space MLT (and multiplexed MLT).
     """
-    def __init__(self, *, mutations_per_pixel: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, bootstrap: typing.SupportsInt | typing.SupportsIndex = 100000, chains: typing.SupportsInt | typing.SupportsIndex = 256, sigma: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582, large_step_probability: typing.SupportsFloat | typing.SupportsIndex = 0.30000001192092896, large_step_mis: bool = True, heuristic: MisHeuristic = MisHeuristic.power, direct_spp: typing.SupportsInt | typing.SupportsIndex = 128, multiplexed: bool = False) -> None:
+    _fields: typing.ClassVar[tuple] = ('mutations_per_pixel', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'bootstrap', 'chains', 'sigma', 'large_step_probability', 'large_step_mis', 'heuristic', 'direct_spp', 'multiplexed')
+    def __init__(self, *, mutations_per_pixel: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, bootstrap: int = 100000, chains: int = 256, sigma: float = 0.01, large_step_probability: float = 0.3, large_step_mis: bool = True, heuristic: MisHeuristic | str = ..., direct_spp: int = 128, multiplexed: bool = False) -> None:
+        """
+        Options of primary-sample-space MLT (and multiplexed MLT). Keywords only: an option left out keeps its default above (the C++ PssmltOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        mutations_per_pixel: Mutations per pixel; 0 = until time_limit.
+        max_depth: Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        rr_depth: Russian roulette from this path vertex on.
+        seed: The image depends on the seed only, not on the threads.
+        threads: Worker threads; 0 = all cores.
+        time_limit: Seconds of wall time; 0 = none.
+        skip_unneeded: Skip work the scene makes pointless; False does it all.
+        bootstrap: Independent samples that estimate b (per path length when multiplexed) and start the chains.
+        chains: Markov chains.
+        sigma: Deviation of a small step, per random number.
+        large_step_probability: Probability that a mutation is a large step (fresh numbers).
+        large_step_mis: Kelemen's MIS: large steps' proposals also count as independent samples.
+        heuristic: BDPT's MIS heuristic (bootstrap, chains, direct light).
+        direct_spp: BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.
+        multiplexed: Multiplexed MLT: chains per path length, each sample one BDPT strategy (needs a bounded max_depth).
+        """
+    def __repr__(self) -> str:
         ...
+    @property
+    def bootstrap(self) -> int:
+        """
+        Independent samples that estimate b (per path length when multiplexed) and start the chains.
+        """
+    @property
+    def chains(self) -> int:
+        """
+        Markov chains.
+        """
+    @property
+    def direct_spp(self) -> int:
+        """
+        BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.
+        """
+    @property
+    def heuristic(self) -> MisHeuristic:
+        """
+        BDPT's MIS heuristic (bootstrap, chains, direct light).
+        """
+    @property
+    def large_step_mis(self) -> bool:
+        """
+        Kelemen's MIS: large steps' proposals also count as independent samples.
+        """
+    @property
+    def large_step_probability(self) -> float:
+        """
+        Probability that a mutation is a large step (fresh numbers).
+        """
+    @property
+    def max_depth(self) -> int:
+        """
+        Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        """
+    @property
+    def multiplexed(self) -> bool:
+        """
+        Multiplexed MLT: chains per path length, each sample one BDPT strategy (needs a bounded max_depth).
+        """
+    @property
+    def mutations_per_pixel(self) -> int:
+        """
+        Mutations per pixel; 0 = until time_limit.
+        """
+    @property
+    def rr_depth(self) -> int:
+        """
+        Russian roulette from this path vertex on.
+        """
+    @property
+    def seed(self) -> int:
+        """
+        The image depends on the seed only, not on the threads.
+        """
+    @property
+    def sigma(self) -> float:
+        """
+        Deviation of a small step, per random number.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip work the scene makes pointless (default True); False does it all.
+        Skip work the scene makes pointless; False does it all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
+    @property
+    def time_limit(self) -> float:
+        """
+        Seconds of wall time; 0 = none.
+        """
 class MltOptions:
     """
-    Options of path-space Metropolis light transport (keywords only).
+    Options of path-space Metropolis light transport.
     """
-    def __init__(self, *, mutations_per_pixel: typing.SupportsInt | typing.SupportsIndex = 64, max_depth: typing.SupportsInt | typing.SupportsIndex = -1, rr_depth: typing.SupportsInt | typing.SupportsIndex = 5, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_limit: typing.SupportsFloat | typing.SupportsIndex = 0.0, bootstrap: typing.SupportsInt | typing.SupportsIndex = 100000, chains: typing.SupportsInt | typing.SupportsIndex = 256, heuristic: MisHeuristic = MisHeuristic.power, direct_spp: typing.SupportsInt | typing.SupportsIndex = 128, bidirectional: typing.SupportsFloat | typing.SupportsIndex = 1.0, lens_subpath: typing.SupportsFloat | typing.SupportsIndex = 0.25, lens_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, caustic_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, multi_chain_perturbation: typing.SupportsFloat | typing.SupportsIndex = 1.0, lens_radius_min: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, lens_radius_max: typing.SupportsFloat | typing.SupportsIndex = 0.0, angle_min: typing.SupportsFloat | typing.SupportsIndex = 9.999999747378752e-05, angle_max: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, importance: str = 'luminance') -> None:
+    _fields: typing.ClassVar[tuple] = ('mutations_per_pixel', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'bootstrap', 'chains', 'heuristic', 'direct_spp', 'bidirectional', 'lens_subpath', 'lens_perturbation', 'caustic_perturbation', 'multi_chain_perturbation', 'lens_radius_min', 'lens_radius_max', 'angle_min', 'angle_max', 'importance')
+    def __init__(self, *, mutations_per_pixel: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, bootstrap: int = 100000, chains: int = 256, heuristic: MisHeuristic | str = ..., direct_spp: int = 128, bidirectional: float = 1.0, lens_subpath: float = 0.25, lens_perturbation: float = 1.0, caustic_perturbation: float = 1.0, multi_chain_perturbation: float = 1.0, lens_radius_min: float = 0.1, lens_radius_max: float = 0.0, angle_min: float = 1e-04, angle_max: float = 0.1, importance: str = 'luminance') -> None:
+        """
+        Options of path-space Metropolis light transport. Keywords only: an option left out keeps its default above (the C++ MltOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        mutations_per_pixel: Mutations per pixel; 0 = until time_limit.
+        max_depth: Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        rr_depth: Russian roulette from this path vertex on.
+        seed: The image depends on the seed only, not on the threads.
+        threads: Worker threads; 0 = all cores.
+        time_limit: Seconds of wall time; 0 = none.
+        skip_unneeded: Skip work the scene makes pointless; False does it all.
+        bootstrap: BDPT samples that estimate b and start the chains.
+        chains: Markov chains.
+        heuristic: MIS heuristic of the bootstrap samples and the direct light.
+        direct_spp: BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.
+        bidirectional: Selection weight of the bidirectional mutation.
+        lens_subpath: Selection weight; 0 disables it.
+        lens_perturbation: Selection weight; 0 disables it.
+        caustic_perturbation: Selection weight; 0 disables it.
+        multi_chain_perturbation: Selection weight; 0 disables it.
+        lens_radius_min: Smallest film offset of the lens and multi-chain perturbations, in pixels.
+        lens_radius_max: Largest film offset, in pixels; 0 = a tenth of the film's width.
+        angle_min: Smallest angular offset of the caustic and multi-chain perturbations, in radians.
+        angle_max: Largest angular offset, in radians.
+        importance: The chains' target: image luminance (Veach), or luminance over the square root of a smoothed pilot estimate of the pixel's brightness (mlt_importance.h).
+        """
+    def __repr__(self) -> str:
         ...
+    @property
+    def angle_max(self) -> float:
+        """
+        Largest angular offset, in radians.
+        """
+    @property
+    def angle_min(self) -> float:
+        """
+        Smallest angular offset of the caustic and multi-chain perturbations, in radians.
+        """
+    @property
+    def bidirectional(self) -> float:
+        """
+        Selection weight of the bidirectional mutation.
+        """
+    @property
+    def bootstrap(self) -> int:
+        """
+        BDPT samples that estimate b and start the chains.
+        """
+    @property
+    def caustic_perturbation(self) -> float:
+        """
+        Selection weight; 0 disables it.
+        """
+    @property
+    def chains(self) -> int:
+        """
+        Markov chains.
+        """
+    @property
+    def direct_spp(self) -> int:
+        """
+        BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.
+        """
+    @property
+    def heuristic(self) -> MisHeuristic:
+        """
+        MIS heuristic of the bootstrap samples and the direct light.
+        """
+    @property
+    def importance(self) -> str:
+        """
+        The chains' target: image luminance (Veach), or luminance over the square root of a smoothed pilot estimate of the pixel's brightness (mlt_importance.h).
+        """
+    @property
+    def lens_perturbation(self) -> float:
+        """
+        Selection weight; 0 disables it.
+        """
+    @property
+    def lens_radius_max(self) -> float:
+        """
+        Largest film offset, in pixels; 0 = a tenth of the film's width.
+        """
+    @property
+    def lens_radius_min(self) -> float:
+        """
+        Smallest film offset of the lens and multi-chain perturbations, in pixels.
+        """
+    @property
+    def lens_subpath(self) -> float:
+        """
+        Selection weight; 0 disables it.
+        """
+    @property
+    def max_depth(self) -> int:
+        """
+        Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.
+        """
+    @property
+    def multi_chain_perturbation(self) -> float:
+        """
+        Selection weight; 0 disables it.
+        """
+    @property
+    def mutations_per_pixel(self) -> int:
+        """
+        Mutations per pixel; 0 = until time_limit.
+        """
+    @property
+    def rr_depth(self) -> int:
+        """
+        Russian roulette from this path vertex on.
+        """
+    @property
+    def seed(self) -> int:
+        """
+        The image depends on the seed only, not on the threads.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip work the scene makes pointless (default True); False does it all.
+        Skip work the scene makes pointless; False does it all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
+    @property
+    def time_limit(self) -> float:
+        """
+        Seconds of wall time; 0 = none.
+        """
 class ChainStartUp:
     """
     What every chain of an MLT render needs: direct light, bootstrap, b, chain starts (picklable).
@@ -457,24 +792,52 @@ class ChainPart:
         ...
 class FormFactorOptions:
     """
-    Options of compute_form_factors (keywords only).
+    Options of compute_form_factors.
     """
-    def __init__(self, *, quadrature: typing.SupportsInt | typing.SupportsIndex = 3, shadow_rays: typing.SupportsInt | typing.SupportsIndex = 4, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, min_value: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    _fields: typing.ClassVar[tuple] = ('quadrature', 'shadow_rays', 'min_value', 'seed', 'threads', 'skip_unneeded')
+    def __init__(self, *, quadrature: int = 3, shadow_rays: int = 4, min_value: float = 0.0, seed: int = 0, threads: int = 0, skip_unneeded: bool = True) -> None:
+        """
+        Options of compute_form_factors. Keywords only: an option left out keeps its default above (the C++ FormFactorOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        quadrature: Points on the receiving patch: 1 (centroid), 3 (degree 2) or 7 (degree 5).
+        shadow_rays: Visibility rays per quadrature point and source patch; 0 = no occlusion test.
+        min_value: Entries below this are dropped (0 keeps every non-zero).
+        seed: Seed of the visibility rays.
+        threads: Worker threads; 0 = all cores.
+        skip_unneeded: Skip visibility rays in a convex enclosure; False traces them all.
+        """
+    def __repr__(self) -> str:
         ...
+    @property
+    def min_value(self) -> float:
+        """
+        Entries below this are dropped (0 keeps every non-zero).
+        """
     @property
     def quadrature(self) -> int:
-        ...
+        """
+        Points on the receiving patch: 1 (centroid), 3 (degree 2) or 7 (degree 5).
+        """
+    @property
+    def seed(self) -> int:
+        """
+        Seed of the visibility rays.
+        """
     @property
     def shadow_rays(self) -> int:
-        ...
+        """
+        Visibility rays per quadrature point and source patch; 0 = no occlusion test.
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip visibility rays in a convex enclosure (default True); False traces them all.
+        Skip visibility rays in a convex enclosure; False traces them all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
 class FormFactors:
     """
     Sparse form factors F (CSR) and F^T.
@@ -634,24 +997,76 @@ class RefinementOracle:
         ...
 class HierarchicalOptions:
     """
-    Options of HierarchicalSolver (keywords only).
+    Options of HierarchicalSolver.
     """
-    def __init__(self, *, oracle: RefinementOracle = RefinementOracle.importance, epsilon: typing.SupportsFloat | typing.SupportsIndex = 0.0001, min_area: typing.SupportsFloat | typing.SupportsIndex = 0.0, shadow_rays: typing.SupportsInt | typing.SupportsIndex = 1, sweeps: typing.SupportsInt | typing.SupportsIndex = 30, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, max_links: typing.SupportsInt | typing.SupportsIndex = 20000000) -> None:
+    _fields: typing.ClassVar[tuple] = ('oracle', 'epsilon', 'min_area', 'shadow_rays', 'sweeps', 'tolerance', 'max_links', 'seed', 'threads', 'skip_unneeded')
+    def __init__(self, *, oracle: RefinementOracle | str = ..., epsilon: float = 0.001, min_area: float = 0.0, shadow_rays: int = 1, sweeps: int = 30, tolerance: float = 1e-06, max_links: int = 20000000, seed: int = 0, threads: int = 0, skip_unneeded: bool = True) -> None:
+        """
+        Options of HierarchicalSolver. Keywords only: an option left out keeps its default above (the C++ HierarchicalOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
+        
+        oracle: Which links to refine: by BF or by importance.
+        epsilon: Refinement threshold, relative: of the brightest emission (BF) or of the measurement (importance).
+        min_area: Elements are not split below this area; 0 = 1e-4 of the largest input triangle.
+        shadow_rays: Visibility rays per receiver quadrature point (7 per link) and per estimate (2).
+        sweeps: Gauss-Seidel sweeps per step at most.
+        tolerance: Relative change per sweep that ends a step's sweeps.
+        max_links: Refinement stops before exceeding this many links.
+        seed: Seed of the visibility rays.
+        threads: Worker threads; 0 = all cores.
+        skip_unneeded: Skip visibility rays in a convex enclosure; False traces them all.
+        """
+    def __repr__(self) -> str:
         ...
     @property
     def epsilon(self) -> float:
-        ...
+        """
+        Refinement threshold, relative: of the brightest emission (BF) or of the measurement (importance).
+        """
+    @property
+    def max_links(self) -> int:
+        """
+        Refinement stops before exceeding this many links.
+        """
     @property
     def min_area(self) -> float:
-        ...
+        """
+        Elements are not split below this area; 0 = 1e-4 of the largest input triangle.
+        """
+    @property
+    def oracle(self) -> RefinementOracle:
+        """
+        Which links to refine: by BF or by importance.
+        """
+    @property
+    def seed(self) -> int:
+        """
+        Seed of the visibility rays.
+        """
+    @property
+    def shadow_rays(self) -> int:
+        """
+        Visibility rays per receiver quadrature point (7 per link) and per estimate (2).
+        """
     @property
     def skip_unneeded(self) -> bool:
         """
-        Skip visibility rays in a convex enclosure (default True); False traces them all.
+        Skip visibility rays in a convex enclosure; False traces them all.
         """
-    @skip_unneeded.setter
-    def skip_unneeded(self, arg0: bool) -> None:
-        ...
+    @property
+    def sweeps(self) -> int:
+        """
+        Gauss-Seidel sweeps per step at most.
+        """
+    @property
+    def threads(self) -> int:
+        """
+        Worker threads; 0 = all cores.
+        """
+    @property
+    def tolerance(self) -> float:
+        """
+        Relative change per sweep that ends a step's sweeps.
+        """
 class HierarchicalSolver:
     """
     Hierarchical radiosity and importance (HSA91, SAS92); stepped.

@@ -44,10 +44,12 @@ import numpy as np
 
 from dualight import metrics, scenes
 from dualight.image import Image
+from dualight.methods import METHODS
+from dualight.plotting import curves_by, save_relmse_against_time
 from dualight.render import render
 from dualight.scene import Scene
 
-MC_METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt", "mlt")
+MC_METHODS = METHODS  # every Monte Carlo method of render
 MAX_DEPTH = 8
 EPS = 1e-2  # relMSE's offset (pbrt-v4)
 ROOMS_REFERENCE_SPP = 8192
@@ -313,37 +315,21 @@ def markdown_table(summary: dict[str, Any]) -> str:
 
 def plot(summary: dict[str, Any], path: Path) -> None:
     """Write log relMSE against log seconds, one panel per scene, to ``path``."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = [n for n, e in summary["scenes"].items() if e.get("runs")]
-    if not names:
-        return
     methods = [*MC_METHODS, *RADIOSITY_LEVELS]
-    colours = {m: f"C{i}" for i, m in enumerate(methods)}
-    fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 4), squeeze=False)
-    for ax, name in zip(axes[0], names, strict=True):
-        runs = summary["scenes"][name]["runs"]
-        for m in methods:
-            rs = sorted((r for r in runs if r["method"] == m), key=lambda r: r["seconds"])
-            if rs:
-                ax.loglog(
-                    [r["seconds"] for r in rs],
-                    [r["relmse"] for r in rs],
-                    "o-",
-                    color=colours[m],
-                    label=m,
-                )
-        ax.set_title(f"{name} 64x64")
-        ax.set_xlabel("seconds")
-        ax.set_ylabel("relMSE")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    panels = {
+        f"{name} 64x64": curves_by(entry["runs"], "method")
+        for name, entry in summary["scenes"].items()
+        if entry.get("runs")
+    }
+    save_relmse_against_time(
+        panels,
+        path,
+        panel_size=(4.5, 4),
+        dpi=100,
+        xlabel="seconds",
+        colours={m: f"C{i}" for i, m in enumerate(methods)},
+        legend_size=7,
+    )
 
 
 def add_parser(sub: Any) -> None:

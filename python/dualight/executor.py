@@ -29,11 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from dualight.render import _estimator
+from dualight.methods import ESTIMATORS
 from dualight.scene import Camera, Scene
-
-# Every method splits: the Metropolis methods into ranges of chains, the others into sample blocks.
-CHAIN_SPLIT = ("pssmlt", "mmlt", "mlt")
 
 # Chains per task of a Metropolis render: 16 tasks for the default 256 chains, enough to keep a
 # few workers busy while the stragglers finish, few enough that the start-up sent to each task
@@ -77,17 +74,18 @@ def render_block(
     scene: Scene,
     camera: Camera,
     method: str,
-    opts: dict[str, Any],
+    keywords: dict[str, Any],
     first_sample: int,
     spp: int,
 ) -> dict[str, Any]:
     """One task: sample indices ``[first_sample, first_sample + spp)`` (one block) of the render
-    named by ``token``; returns the film's raw accumulators and the core's stats."""
+    named by ``token``, its other options ``keywords``; returns the film's raw accumulators and
+    the core's stats."""
     cpu_start = time.process_time()
     compiled = _compiled_scene(token, scene)
-    run, options = _estimator(method, spp=spp, time_limit=0.0, **opts)
-    options.first_sample = first_sample
-    result = run(compiled, camera._compile(), options, None, accumulators=True)
+    estimator = ESTIMATORS[method]
+    options = estimator.options(**{**keywords, "spp": spp, "first_sample": first_sample})
+    result = estimator.render(compiled, camera._compile(), options, None, accumulators=True)
     stats = dict(result["stats"])
     stats["cpu_seconds"] = time.process_time() - cpu_start  # the worker's, compile included
     return {
@@ -136,15 +134,17 @@ def render_split(
     scene: Scene,
     camera: Camera,
     method: str,
-    opts: dict[str, Any],
-    spp: int,
+    keywords: dict[str, Any],
     progress: Callable[[int, int], None] | None,
 ) -> dict[str, Any]:
-    """Renders ``spp`` samples per pixel as one task per block on ``executor`` and merges the
-    blocks in order. Returns a dict like the core's (mean, variance, light_paths, stats,
-    keyboard_interrupt). Ctrl-C cancels the tasks not started and returns what has finished."""
+    """Renders ``method`` (``"path"``, ``"light"``, ``"bdpt"``) with the keywords of its core
+    options (``spp`` samples per pixel, no time limit) as one task per block on ``executor``
+    and merges the blocks in order. Returns a dict like the core's (mean, variance,
+    light_paths, stats, keyboard_interrupt). Ctrl-C cancels the tasks not started and returns
+    what has finished."""
     from dualight import _core
 
+    spp = keywords["spp"]
     block = int(_core.BLOCK_SPP)
     token = uuid.uuid4().hex
     width, height = camera.resolution
@@ -152,7 +152,7 @@ def render_split(
     blocks = [(first, min(block, spp - first)) for first in range(0, spp, block)]
     start = time.perf_counter()
     futures = {
-        executor.submit(render_block, token, scene, camera, method, opts, first, count): k
+        executor.submit(render_block, token, scene, camera, method, keywords, first, count): k
         for k, (first, count) in enumerate(blocks)
     }
     film = _core.Film(width, height)
@@ -216,19 +216,19 @@ def render_chains(
     scene: Scene,
     camera: Camera,
     method: str,
-    opts: dict[str, Any],
-    spp: int,
+    keywords: dict[str, Any],
     start: Any,
     first_chain: int,
     chain_count: int,
 ) -> dict[str, Any]:
     """One task of a Metropolis render: chains ``[first_chain, first_chain + chain_count)`` of
-    the start-up ``start`` (a ``_core.ChainStartUp``); returns their ``_core.ChainPart``."""
+    the start-up ``start`` (a ``_core.ChainStartUp``), the options' keywords ``keywords``;
+    returns their ``_core.ChainPart``."""
     from dualight import _core
 
     cpu_start = time.process_time()
     compiled = _compiled_scene(token, scene)
-    _, options = _estimator(method, spp=spp, time_limit=0.0, **opts)
+    options = ESTIMATORS[method].options(**keywords)
     part = _core.run_chains(compiled, camera._compile(), options, start, first_chain, chain_count)
     return {
         "part": part,
@@ -242,23 +242,24 @@ def render_chain_split(
     scene: Scene,
     camera: Camera,
     method: str,
-    opts: dict[str, Any],
-    spp: int,
+    keywords: dict[str, Any],
     progress: Callable[[int, int], None] | None,
     start_threads: int = 0,
 ) -> dict[str, Any]:
-    """Renders a Metropolis method (``pssmlt``, ``mmlt``, ``mlt``) with ``spp`` mutations per
-    pixel: the start-up here on ``start_threads`` threads (0: every core), then the chains as
-    tasks of ``CHAINS_PER_TASK`` chains on ``executor``, merged in chain order. Returns a dict
-    like the core's. Ctrl-C during the start-up returns its image (direct light); during the
-    chains it cancels the tasks not started and merges those that finished."""
+    """Renders a Metropolis method (``pssmlt``, ``mmlt``, ``mlt``) with the keywords of its
+    core options (``mutations_per_pixel``, no time limit): the start-up here on
+    ``start_threads`` threads (0: every core), then the chains as tasks of ``CHAINS_PER_TASK``
+    chains on ``executor``, merged in chain order. Returns a dict like the core's. Ctrl-C
+    during the start-up returns its image (direct light); during the chains it cancels the
+    tasks not started and merges those that finished."""
     from dualight import _core
 
     start_time = time.perf_counter()
     token = uuid.uuid4().hex
     width, height = camera.resolution
     compiled_scene, compiled_camera = scene._compile(), camera._compile()
-    _, options = _estimator(method, spp=spp, time_limit=0.0, **{**opts, "threads": start_threads})
+    spp = keywords["mutations_per_pixel"]
+    options = ESTIMATORS[method].options(**{**keywords, "threads": start_threads})
     start = _core.start_chains(compiled_scene, compiled_camera, options, progress)
     total = start.chains
     ranges = [
@@ -280,8 +281,7 @@ def render_chain_split(
                     scene,
                     camera,
                     method,
-                    opts,
-                    spp,
+                    keywords,
                     start.for_chains(first, count),
                     first,
                     count,

@@ -4,16 +4,17 @@ from __future__ import annotations
 
 import numbers
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
+from dualight import _core
+from dualight.executor import as_executor, render_chain_split, render_split
 from dualight.image import Image
+from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator
 from dualight.scene import Camera, Scene
 
-METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt", "mlt")
-_MLT = ("pssmlt", "mmlt", "mlt")
-SAMPLERS = ("independent", "sobol")
-HEURISTICS = ("power", "balance")
+# The core's defaults of the keywords render shares with the options (BDPT's have them all).
+_DEFAULT = _core.BdptOptions()
 
 ProgressCallback = Callable[[int, int], None]
 
@@ -44,34 +45,6 @@ class _TqdmProgress:
             self._bar.close()
 
 
-# Keyword options each MLT method takes through ``mlt=`` (the rest of its core options struct
-# comes from render's own keywords). Integers among them must be >= the given minimum.
-_MLT_OPTIONS: dict[str, frozenset[str]] = {
-    "pssmlt": frozenset(
-        {"bootstrap", "chains", "sigma", "large_step_probability", "large_step_mis", "direct_spp"}
-    ),
-    "mlt": frozenset(
-        {
-            "bootstrap",
-            "chains",
-            "direct_spp",
-            "bidirectional",
-            "lens_subpath",
-            "lens_perturbation",
-            "caustic_perturbation",
-            "multi_chain_perturbation",
-            "lens_radius_min",
-            "lens_radius_max",
-            "angle_min",
-            "angle_max",
-            "importance",
-        }
-    ),
-}
-_MLT_OPTIONS["mmlt"] = _MLT_OPTIONS["pssmlt"]
-_MLT_INT_MINIMUM = {"bootstrap": 1, "chains": 1, "direct_spp": 0}
-
-
 def _check_int(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
@@ -80,21 +53,11 @@ def _check_int(name: str, value: Any, minimum: int, maximum: int | None = None) 
     return value
 
 
-def _check_mlt_options(method: str, mlt: Any) -> dict[str, Any]:
-    """``mlt=`` as a dict of known keys: a misspelled key is a TypeError naming it, a negative
-    count a ValueError (instead of pybind11's list of overloads)."""
-    if not isinstance(mlt, dict):
-        raise TypeError(f"mlt must be a dict of options, got {type(mlt).__name__}")
-    valid = _MLT_OPTIONS[method]
-    for key, value in mlt.items():
-        if key not in valid:
-            raise TypeError(
-                f"unknown mlt option {key!r} for method {method!r}; "
-                f"valid: {', '.join(sorted(valid))}"
-            )
-        if key in _MLT_INT_MINIMUM:
-            _check_int(f"mlt option {key}", value, _MLT_INT_MINIMUM[key], (1 << 32) - 1)
-    return mlt
+def _only_for(keyword: str, unset: bool, estimator: Estimator, method: str) -> None:
+    """A keyword that only some methods' options take must stay unset for the others."""
+    if not unset and not estimator.takes(keyword):
+        takers = ", ".join(repr(n) for n, e in ESTIMATORS.items() if e.takes(keyword))
+        raise ValueError(f"{keyword} applies to method {takers} only, not {method!r}")
 
 
 def _scene_features(scene: Scene, camera: Camera | None = None) -> dict[str, Any]:
@@ -124,90 +87,24 @@ def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
     return out
 
 
-def _estimator(
-    method: str,
-    *,
-    spp: int,
-    max_depth: int,
-    rr_depth: int,
-    seed: int,
-    threads: int,
-    time_limit: float,
-    sampler: str,
-    heuristic: str,
-    strategy_images: bool = False,
-    mlt: dict[str, Any] | None = None,
-    skip: bool = True,
-) -> tuple[Callable[..., dict[str, Any]], Any]:
-    """The core's render function for ``method`` and its options (arguments already checked):
-    shared by :func:`render` and the tasks of :mod:`dualight.executor`."""
-    from dualight import _core
-
-    common = dict(
-        spp=spp,
-        max_depth=max_depth,
-        rr_depth=rr_depth,
-        seed=seed,
-        threads=threads,
-        time_limit=time_limit,
-        sampler=getattr(_core.SamplerType, sampler),
-    )
-    if method == "path":
-        run, options = _core.render_path, _core.PathTracerOptions(**common)
-    elif method == "light":
-        run, options = _core.render_light, _core.LightTracerOptions(**common)
-    elif method == "mlt":
-        common["mutations_per_pixel"] = common.pop("spp")
-        common.pop("sampler")
-        run, options = (
-            _core.render_mlt,
-            _core.MltOptions(
-                **common, heuristic=getattr(_core.MisHeuristic, heuristic), **(mlt or {})
-            ),
-        )
-    elif method in _MLT:
-        common["mutations_per_pixel"] = common.pop("spp")
-        common.pop("sampler")
-        run, options = (
-            _core.render_pssmlt,
-            _core.PssmltOptions(
-                **common,
-                heuristic=getattr(_core.MisHeuristic, heuristic),
-                multiplexed=method == "mmlt",
-                **(mlt or {}),
-            ),
-        )
-    else:
-        run, options = (
-            _core.render_bdpt,
-            _core.BdptOptions(
-                **common,
-                heuristic=getattr(_core.MisHeuristic, heuristic),
-                strategy_images=strategy_images,
-            ),
-        )
-    options.skip_unneeded = skip
-    return run, options
-
-
 def render(
     scene: Scene,
     method: str = "path",
     *,
-    spp: int | None = 64,
+    spp: int | None = _DEFAULT.spp,
     time_limit: float | None = None,
-    max_depth: int = -1,
-    rr_depth: int = 5,
-    seed: int = 0,
+    max_depth: int = _DEFAULT.max_depth,
+    rr_depth: int = _DEFAULT.rr_depth,
+    seed: int = _DEFAULT.seed,
     threads: int | None = None,
     progress: bool | ProgressCallback = True,
     camera: Camera | None = None,
-    sampler: str = "independent",
-    heuristic: str = "power",
-    strategy_images: bool = False,
+    sampler: str = _DEFAULT.sampler.name,
+    heuristic: str = _DEFAULT.heuristic.name,
+    strategy_images: bool = _DEFAULT.strategy_images,
     mutations_per_pixel: int | None = None,
-    mlt: dict[str, Any] | None = None,
-    skip: bool = True,
+    mlt: Mapping[str, Any] | None = None,
+    skip: bool = _DEFAULT.skip_unneeded,
     executor: Any = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
@@ -224,7 +121,7 @@ def render(
         ``"pssmlt"``: primary-sample-space Metropolis light transport over BDPT (Kelemen et
         al. 2002); its budget is ``mutations_per_pixel`` (or ``spp``) and/or ``time_limit``.
         Emitters seen directly and direct lighting (paths of 1 and 2 segments) are rendered
-        apart by BDPT (``direct_spp``, default 128) and left out of the chains. Large steps
+        apart by BDPT (``direct_spp`` samples per pixel) and left out of the chains. Large steps
         also count as independent samples, combined with the chains' by Kelemen's MIS
         (``large_step_mis``). Its pixels are correlated, so ``image.variance`` is ``None``;
         ``image.stats`` has the normalisation ``b`` with its 95 % interval ``b_ci95`` (from
@@ -270,22 +167,24 @@ def render(
     heuristic:
         BDPT's MIS heuristic: ``"power"`` (exponent 2, the default) or ``"balance"``.
     mlt:
-        ``"pssmlt"`` and ``"mmlt"``: keyword options of ``dualight._core.PssmltOptions``:
-        ``bootstrap`` (100000 independent samples for b, per path length for MMLT, and the
-        chains' starts), ``chains`` (256), ``sigma`` (0.01, small-step deviation),
-        ``large_step_probability`` (0.3), ``large_step_mis`` (True: Kelemen's MIS of large
-        steps; False: the chains' expected values only), ``direct_spp`` (128; 0 keeps direct
-        light in the chains).
-        ``"mlt"``: of ``dualight._core.MltOptions``: ``bootstrap``, ``chains``,
-        ``direct_spp`` as above; mutation weights ``bidirectional`` (1), ``lens_subpath``
-        (0.25), ``lens_perturbation``, ``caustic_perturbation``,
-        ``multi_chain_perturbation`` (1 each; 0 disables); ``lens_radius_min`` (0.1 pixel),
-        ``lens_radius_max`` (0: a tenth of the film width), ``angle_min`` (1e-4 rad),
-        ``angle_max`` (0.1 rad); ``importance``: the chains' target, ``"luminance"`` (Veach's
-        image luminance, the default) or ``"flattened"`` (luminance over the square root of a
-        smoothed pilot estimate of the pixel's brightness: mutations spread towards dark
-        pixels, lower relMSE where brightness varies a lot, as on the door; costs
-        ``bootstrap / 4`` more BDPT samples).
+        The Metropolis methods' own options, passed on as keywords to their core options
+        class, whose docstring gives each one's default and range (``help(
+        dualight._core.PssmltOptions)``); a misspelled key is a ``TypeError`` listing the
+        valid ones, and so is a key ``render`` sets itself (``max_depth``, ``seed``, ...).
+        ``"pssmlt"`` and ``"mmlt"`` (``PssmltOptions``): ``bootstrap`` (independent samples
+        for b, per path length for MMLT, and the chains' starts), ``chains``, ``sigma``
+        (small-step deviation), ``large_step_probability``, ``large_step_mis`` (True:
+        Kelemen's MIS of large steps; False: the chains' expected values only),
+        ``direct_spp`` (0 keeps direct light in the chains).
+        ``"mlt"`` (``MltOptions``): ``bootstrap``, ``chains``, ``direct_spp`` as above;
+        mutation weights ``bidirectional``, ``lens_subpath``, ``lens_perturbation``,
+        ``caustic_perturbation``, ``multi_chain_perturbation`` (0 disables one);
+        ``lens_radius_min`` and ``lens_radius_max`` (pixels; 0: a tenth of the film width),
+        ``angle_min`` and ``angle_max`` (radians); ``importance``: the chains' target,
+        ``"luminance"`` (Veach's image luminance, the default) or ``"flattened"``
+        (luminance over the square root of a smoothed pilot estimate of the pixel's
+        brightness: mutations spread towards dark pixels, lower relMSE where brightness
+        varies a lot, as on the door; costs ``bootstrap / 4`` more BDPT samples).
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
@@ -327,8 +226,11 @@ def render(
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
-    if method not in METHODS:
+    if method not in ESTIMATORS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    estimator = ESTIMATORS[method]
+    # render's own keywords where None means something (the core's options take 0 for it);
+    # the core checks the rest as it builds the options below.
     if spp is None and time_limit is None:
         raise ValueError("give spp, time_limit, or both")
     if spp is not None:
@@ -341,43 +243,46 @@ def render(
         or not 0 < time_limit < float("inf")
     ):
         raise ValueError(f"time_limit must be a finite number > 0 of seconds, got {time_limit!r}")
-    if (
-        isinstance(max_depth, bool)
-        or not isinstance(max_depth, int)
-        or not -1 <= max_depth < 1 << 31
-    ):
-        raise ValueError(f"max_depth must be -1 (unbounded) or an integer >= 0, got {max_depth!r}")
-    _check_int("rr_depth", rr_depth, 1, (1 << 31) - 1)
-    _check_int("seed", seed, 0, (1 << 64) - 1)
     if threads is not None:
         _check_int("threads", threads, 1)
         threads = min(threads, os.cpu_count() or threads)
-    if sampler not in SAMPLERS:
-        raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(SAMPLERS)}")
     if mutations_per_pixel is not None:
-        if method not in _MLT:
-            raise ValueError("mutations_per_pixel applies to pssmlt, mmlt and mlt only")
+        if not estimator.metropolis:
+            raise ValueError(f"mutations_per_pixel applies to {', '.join(METROPOLIS)} only")
         _check_int("mutations_per_pixel", mutations_per_pixel, 1)
         spp = mutations_per_pixel
-    if mlt is not None and method not in _MLT:
-        raise ValueError("mlt options apply to the MLT methods only (pssmlt, mmlt, mlt)")
-    if mlt is not None:
-        mlt = _check_mlt_options(method, mlt)
-    if heuristic not in HEURISTICS:
-        raise ValueError(f"unknown heuristic {heuristic!r}; choose one of {', '.join(HEURISTICS)}")
-    if method not in ("bdpt", *_MLT) and heuristic != "power":
-        raise ValueError("heuristic applies to method='bdpt' and the MLT methods only")
-    if method != "bdpt" and strategy_images:
-        raise ValueError("strategy_images applies to method='bdpt' only")
-    if strategy_images and max_depth < 1:
-        raise ValueError("strategy_images needs a bounded max_depth >= 1")
+    if mlt is not None and not estimator.metropolis:
+        raise ValueError(f"mlt options apply to the MLT methods only ({', '.join(METROPOLIS)})")
+    if mlt is not None and not isinstance(mlt, Mapping):
+        raise TypeError(f"mlt must be a dict of options, got {type(mlt).__name__}")
+    _only_for("heuristic", heuristic == _DEFAULT.heuristic.name, estimator, method)
+    _only_for("strategy_images", not strategy_images, estimator, method)
+    if not estimator.takes("sampler"):
+        # The Metropolis methods draw their own numbers: the name is checked, not used.
+        _core.PathTracerOptions(sampler=sampler)
     if camera is not None and not isinstance(camera, Camera):
         raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
     if not isinstance(skip, bool):
         raise TypeError(f"skip must be True or False, got {skip!r}")
+    fields: dict[str, Any] = {
+        estimator.budget: spp or 0,
+        "max_depth": max_depth,
+        "rr_depth": rr_depth,
+        "seed": seed,
+        "threads": threads or 0,
+        "time_limit": time_limit or 0.0,
+        "skip_unneeded": skip,
+    }
+    for keyword, value in (
+        ("sampler", sampler),
+        ("heuristic", heuristic),
+        ("strategy_images", strategy_images),
+    ):
+        if estimator.takes(keyword):
+            fields[keyword] = value
+    keywords = estimator.keywords(fields, mlt)
+    options = estimator.options(**keywords)  # the core checks every value, before any work
     if executor is not None:
-        from dualight.executor import as_executor
-
         executor = as_executor(executor)
         if time_limit is not None or spp is None:
             raise ValueError(
@@ -390,20 +295,6 @@ def render(
     cam = camera or scene.camera
     assert cam is not None
 
-    run, options = _estimator(
-        method,
-        spp=spp or 0,
-        max_depth=max_depth,
-        rr_depth=rr_depth,
-        seed=seed,
-        threads=threads or 0,
-        time_limit=time_limit or 0.0,
-        sampler=sampler,
-        heuristic=heuristic,
-        strategy_images=strategy_images,
-        mlt=mlt,
-        skip=skip,
-    )
     bar = None
     callback: ProgressCallback | None
     if progress is True:
@@ -417,27 +308,18 @@ def render(
         raise TypeError("progress must be True, False or a callable(done, total)")
     try:
         if executor is not None:
-            from dualight.executor import CHAIN_SPLIT, render_chain_split, render_split
-
-            task_options = dict(
-                max_depth=max_depth,
-                rr_depth=rr_depth,
-                seed=seed,
-                threads=threads or 1,
-                sampler=sampler,
-                heuristic=heuristic,
-                skip=skip,
-            )
-            assert spp is not None
-            if method in CHAIN_SPLIT:
-                task_options["mlt"] = mlt
+            # Each task uses `threads` threads (default 1: the workers give the parallelism);
+            # the Metropolis methods' start-up runs here, on every core by default.
+            tasks = {**keywords, "threads": threads or 1}
+            if estimator.metropolis:
+                start_threads = threads or 0
                 result = render_chain_split(
-                    executor, scene, cam, method, task_options, spp, callback, threads or 0
+                    executor, scene, cam, method, tasks, callback, start_threads
                 )
             else:
-                result = render_split(executor, scene, cam, method, task_options, spp, callback)
+                result = render_split(executor, scene, cam, method, tasks, callback)
         else:
-            result = run(scene._compile(), cam._compile(), options, callback)
+            result = estimator.render(scene._compile(), cam._compile(), options, callback)
     finally:
         if bar is not None:
             bar.close()

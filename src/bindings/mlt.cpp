@@ -11,60 +11,33 @@
 namespace dualight::bindings {
 
 void bind_mlt(py::module_& m) {
-  py::class_<MltOptions>(m, "MltOptions", "Options of path-space Metropolis light transport (keywords only).")
-      .def_readwrite("skip_unneeded", &MltOptions::skip_unneeded,
-                     "Skip work the scene makes pointless (default True); False does it all.")
-      .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
-                       double time_limit, uint32_t bootstrap, uint32_t chains, MisHeuristic heuristic,
-                       uint32_t direct_spp, float bidirectional, float lens_subpath, float lens_perturbation,
-                       float caustic_perturbation, float multi_chain_perturbation, float lens_radius_min,
-                       float lens_radius_max, float angle_min, float angle_max, const std::string& importance) {
-             check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
-             if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
-             if (chains < 1) throw py::value_error("chains must be >= 1");
-             for (const float w : {bidirectional, lens_subpath, lens_perturbation, caustic_perturbation,
-                                   multi_chain_perturbation}) {
-               if (!(w >= 0.f && std::isfinite(w))) throw py::value_error("mutation weights must be finite and >= 0");
-             }
-             if (!(bidirectional > 0.f)) {
-               throw py::value_error("bidirectional must be > 0: the other mutations alone do not reach every path");
-             }
-             if (!(lens_radius_min > 0.f) || !(lens_radius_max >= 0.f) ||
-                 (lens_radius_max > 0.f && lens_radius_max <= lens_radius_min)) {
-               throw py::value_error("need 0 < lens_radius_min < lens_radius_max (pixels; lens_radius_max 0 = auto)");
-             }
-             if (!(angle_min > 0.f && angle_max > angle_min && angle_max < 3.14159f)) {
-               throw py::value_error("need 0 < angle_min < angle_max < pi (radians)");
-             }
-             if (importance != "luminance" && importance != "flattened") {
-               throw py::value_error("importance must be 'luminance' or 'flattened', not '" + importance + "'");
-             }
-             MltOptions o;
-             o.importance = importance == "flattened" ? MltImportance::Flattened : MltImportance::Luminance;
-             static_cast<EstimatorOptions&>(o) = {mutations_per_pixel, max_depth, rr_depth, seed, threads,
-                                                  time_limit, SamplerType::Independent};
-             o.bootstrap = bootstrap;
-             o.chains = chains;
-             o.heuristic = heuristic;
-             o.direct_spp = direct_spp;
-             o.bidirectional = bidirectional;
-             o.lens_subpath = lens_subpath;
-             o.lens_perturbation = lens_perturbation;
-             o.caustic_perturbation = caustic_perturbation;
-             o.multi_chain_perturbation = multi_chain_perturbation;
-             o.lens_radius_min = lens_radius_min;
-             o.lens_radius_max = lens_radius_max;
-             o.angle_min = angle_min;
-             o.angle_max = angle_max;
-             return o;
-           }),
-           py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
-           py::arg("chains") = 256, py::arg("heuristic") = MisHeuristic::Power, py::arg("direct_spp") = 128,
-           py::arg("bidirectional") = 1.f, py::arg("lens_subpath") = 0.25f, py::arg("lens_perturbation") = 1.f,
-           py::arg("caustic_perturbation") = 1.f, py::arg("multi_chain_perturbation") = 1.f,
-           py::arg("lens_radius_min") = 0.1f, py::arg("lens_radius_max") = 0.f, py::arg("angle_min") = 1e-4f,
-           py::arg("angle_max") = 0.1f, py::arg("importance") = "luminance");
+  OptionsClass<MltOptions> mlt(m, "MltOptions", "Options of path-space Metropolis light transport.");
+  add_estimator_fields(mlt, "mutations_per_pixel", "Mutations per pixel; 0 = until time_limit.");
+  mlt.field("bootstrap", &MltOptions::bootstrap, "BDPT samples that estimate b and start the chains.", at_least(1))
+      .field("chains", &MltOptions::chains, "Markov chains.", at_least(1))
+      .field("heuristic", &MltOptions::heuristic, "MIS heuristic of the bootstrap samples and the direct light.")
+      .field("direct_spp", &MltOptions::direct_spp,
+             "BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.")
+      .field("bidirectional", &MltOptions::bidirectional, "Selection weight of the bidirectional mutation.",
+             above(0, "(the other mutations alone do not reach every path)"))
+      .field("lens_subpath", &MltOptions::lens_subpath, "Selection weight; 0 disables it.", at_least(0))
+      .field("lens_perturbation", &MltOptions::lens_perturbation, "Selection weight; 0 disables it.", at_least(0))
+      .field("caustic_perturbation", &MltOptions::caustic_perturbation, "Selection weight; 0 disables it.",
+             at_least(0))
+      .field("multi_chain_perturbation", &MltOptions::multi_chain_perturbation, "Selection weight; 0 disables it.",
+             at_least(0))
+      .field("lens_radius_min", &MltOptions::lens_radius_min,
+             "Smallest film offset of the lens and multi-chain perturbations, in pixels.", above(0))
+      .field("lens_radius_max", &MltOptions::lens_radius_max,
+             "Largest film offset, in pixels; 0 = a tenth of the film's width.", at_least(0))
+      .field("angle_min", &MltOptions::angle_min,
+             "Smallest angular offset of the caustic and multi-chain perturbations, in radians.", above(0))
+      .field("angle_max", &MltOptions::angle_max, "Largest angular offset, in radians.", strictly_within(0, 3.14159))
+      .choice("importance", &MltOptions::importance,
+              "The chains' target: image luminance (Veach), or luminance over the square root of a smoothed "
+              "pilot estimate of the pixel's brightness (mlt_importance.h).",
+              Names<MltImportance>{{"luminance", MltImportance::Luminance}, {"flattened", MltImportance::Flattened}})
+      .bind();
 
   m.def(
       "render_mlt",

@@ -1,3 +1,5 @@
+// The path tracer, the light tracer, BDPT and PSSMLT: their options (bindings/options.h) and
+// renderers, and checks for tests and plots (subpath densities, sampler points, ray casts).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -19,26 +21,9 @@ void bind_pathspace(py::module_& m) {
       .value("independent", SamplerType::Independent)
       .value("sobol", SamplerType::Sobol);
 
-  py::class_<PathTracerOptions>(m, "PathTracerOptions", "Options of the path tracer (keywords only).")
-      .def_readwrite("first_sample", &PathTracerOptions::first_sample,
-                     "First sample index rendered (one task of a split render; see Film).")
-      .def_readwrite("skip_unneeded", &PathTracerOptions::skip_unneeded,
-                     "Skip work the scene makes pointless (default True); False does it all.")
-      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
-                       SamplerType sampler) {
-             check_common(spp, max_depth, rr_depth, threads, time_limit);
-             return PathTracerOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}};
-           }),
-           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
-           py::arg("sampler") = SamplerType::Independent)
-      .def_readonly("sampler", &PathTracerOptions::sampler)
-      .def_readonly("spp", &PathTracerOptions::spp)
-      .def_readonly("max_depth", &PathTracerOptions::max_depth)
-      .def_readonly("rr_depth", &PathTracerOptions::rr_depth)
-      .def_readonly("seed", &PathTracerOptions::seed)
-      .def_readonly("threads", &PathTracerOptions::threads)
-      .def_readonly("time_limit", &PathTracerOptions::time_limit);
+  OptionsClass<PathTracerOptions> path(m, "PathTracerOptions", "Options of the path tracer.");
+  add_pixel_fields(path, "Samples per pixel; 0 = until time_limit.");
+  path.bind();
 
   m.def(
       "render_path",
@@ -59,38 +44,16 @@ void bind_pathspace(py::module_& m) {
       .value("power", MisHeuristic::Power)
       .value("balance", MisHeuristic::Balance);
 
-  py::class_<LightTracerOptions>(m, "LightTracerOptions", "Options of the light tracer (keywords only).")
-      .def_readwrite("first_sample", &LightTracerOptions::first_sample,
-                     "First sample index rendered (one task of a split render; see Film).")
-      .def_readwrite("skip_unneeded", &LightTracerOptions::skip_unneeded,
-                     "Skip work the scene makes pointless (default True); False does it all.")
-      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
-                       SamplerType sampler) {
-             check_common(spp, max_depth, rr_depth, threads, time_limit);
-             return LightTracerOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}};
-           }),
-           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
-           py::arg("sampler") = SamplerType::Independent);
+  OptionsClass<LightTracerOptions> light(m, "LightTracerOptions", "Options of the light tracer.");
+  add_pixel_fields(light, "Particles per pixel (spp x pixels particles in all); 0 = until time_limit.");
+  light.bind();
 
-  py::class_<BdptOptions>(m, "BdptOptions", "Options of bidirectional path tracing (keywords only).")
-      .def_readwrite("first_sample", &BdptOptions::first_sample,
-                     "First sample index rendered (one task of a split render; see Film).")
-      .def_readwrite("skip_unneeded", &BdptOptions::skip_unneeded,
-                     "Skip work the scene makes pointless (default True); False does it all.")
-      .def(py::init([](uint32_t spp, int max_depth, int rr_depth, uint64_t seed, int threads, double time_limit,
-                       SamplerType sampler, MisHeuristic heuristic, bool strategy_images) {
-             check_common(spp, max_depth, rr_depth, threads, time_limit);
-             if (strategy_images && max_depth < 0) {
-               throw py::value_error("strategy_images needs a bounded max_depth (>= 1)");
-             }
-             return BdptOptions{{spp, max_depth, rr_depth, seed, threads, time_limit, sampler}, heuristic,
-                                strategy_images};
-           }),
-           py::kw_only(), py::arg("spp") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0,
-           py::arg("sampler") = SamplerType::Independent, py::arg("heuristic") = MisHeuristic::Power,
-           py::arg("strategy_images") = false);
+  OptionsClass<BdptOptions> bdpt(m, "BdptOptions", "Options of bidirectional path tracing.");
+  add_pixel_fields(bdpt, "Samples per pixel; 0 = until time_limit.");
+  bdpt.field("heuristic", &BdptOptions::heuristic, "How the strategies' samples are weighted (MIS).")
+      .field("strategy_images", &BdptOptions::strategy_images,
+             "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).")
+      .bind();
 
   m.def(
       "render_light",
@@ -133,41 +96,24 @@ void bind_pathspace(py::module_& m) {
       "Bidirectional path tracing; returns dict(mean, variance, counts, light_paths, stats, strategies, "
       "keyboard_interrupt); strategies maps (s, t) to MIS-weighted images when asked for.");
 
-  py::class_<PssmltOptions>(m, "PssmltOptions", "Options of primary-sample-space MLT (keywords only).")
-      .def_readwrite("skip_unneeded", &PssmltOptions::skip_unneeded,
-                     "Skip work the scene makes pointless (default True); False does it all.")
-      .def(py::init([](uint32_t mutations_per_pixel, int max_depth, int rr_depth, uint64_t seed, int threads,
-                       double time_limit, uint32_t bootstrap, uint32_t chains, float sigma,
-                       float large_step_probability, bool large_step_mis, MisHeuristic heuristic,
-                       uint32_t direct_spp, bool multiplexed) {
-             check_common(mutations_per_pixel, max_depth, rr_depth, threads, time_limit);
-             if (bootstrap < 1) throw py::value_error("bootstrap must be >= 1");
-             if (chains < 1) throw py::value_error("chains must be >= 1");
-             if (!(sigma > 0.f && sigma < 1.f)) throw py::value_error("sigma must be in (0, 1)");
-             if (!(large_step_probability >= 0.f && large_step_probability <= 1.f)) {
-               throw py::value_error("large_step_probability must be in [0, 1]");
-             }
-             if (multiplexed && max_depth < 1) {
-               throw py::value_error("multiplexed MLT needs a bounded max_depth >= 1 (chains per path length)");
-             }
-             PssmltOptions o;
-             static_cast<EstimatorOptions&>(o) = {mutations_per_pixel, max_depth, rr_depth, seed, threads,
-                                                  time_limit, SamplerType::Independent};
-             o.bootstrap = bootstrap;
-             o.chains = chains;
-             o.sigma = sigma;
-             o.large_step_probability = large_step_probability;
-             o.large_step_mis = large_step_mis;
-             o.heuristic = heuristic;
-             o.direct_spp = direct_spp;
-             o.multiplexed = multiplexed;
-             return o;
-           }),
-           py::kw_only(), py::arg("mutations_per_pixel") = 64, py::arg("max_depth") = -1, py::arg("rr_depth") = 5,
-           py::arg("seed") = 0, py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("bootstrap") = 100000,
-           py::arg("chains") = 256, py::arg("sigma") = 0.01f, py::arg("large_step_probability") = 0.3f,
-           py::arg("large_step_mis") = PssmltOptions{}.large_step_mis, py::arg("heuristic") = MisHeuristic::Power,
-           py::arg("direct_spp") = 128, py::arg("multiplexed") = false);
+  OptionsClass<PssmltOptions> pssmlt(m, "PssmltOptions",
+                                      "Options of primary-sample-space MLT (and multiplexed MLT).");
+  add_estimator_fields(pssmlt, "mutations_per_pixel", "Mutations per pixel; 0 = until time_limit.");
+  pssmlt.field("bootstrap", &PssmltOptions::bootstrap,
+               "Independent samples that estimate b (per path length when multiplexed) and start the chains.",
+               at_least(1))
+      .field("chains", &PssmltOptions::chains, "Markov chains.", at_least(1))
+      .field("sigma", &PssmltOptions::sigma, "Deviation of a small step, per random number.", strictly_within(0, 1))
+      .field("large_step_probability", &PssmltOptions::large_step_probability,
+             "Probability that a mutation is a large step (fresh numbers).", within(0, 1))
+      .field("large_step_mis", &PssmltOptions::large_step_mis,
+             "Kelemen's MIS: large steps' proposals also count as independent samples.")
+      .field("heuristic", &PssmltOptions::heuristic, "BDPT's MIS heuristic (bootstrap, chains, direct light).")
+      .field("direct_spp", &PssmltOptions::direct_spp,
+             "BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.")
+      .field("multiplexed", &PssmltOptions::multiplexed,
+             "Multiplexed MLT: chains per path length, each sample one BDPT strategy (needs a bounded max_depth).")
+      .bind();
 
   m.def(
       "render_pssmlt",

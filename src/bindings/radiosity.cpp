@@ -1,3 +1,5 @@
+// Radiosity: form factors and their options, the system M = I - diag(rho) F with its direct and
+// stepped solvers, and hierarchical radiosity (bindings/options.h binds the options).
 #include <optional>
 
 #include <pybind11/numpy.h>
@@ -6,6 +8,7 @@
 
 #include "bindings/interruptible.h"
 #include "bindings/numpy_util.h"
+#include "bindings/options.h"
 #include "geometry/camera_hits.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hierarchical.h"
@@ -40,6 +43,14 @@ py::dict step_dict(const SolverStep& s) {
 }
 
 SystemSide side_of(bool dual) { return dual ? SystemSide::Dual : SystemSide::Primal; }
+
+// The fields both radiosity options have: the visibility rays' seed and threads, and skipping.
+template <class T>
+void add_visibility_fields(OptionsClass<T>& o) {
+  o.field("seed", &T::seed, "Seed of the visibility rays.")
+      .field("threads", &T::threads, "Worker threads; 0 = all cores.", at_least(0))
+      .field("skip_unneeded", &T::skip_unneeded, "Skip visibility rays in a convex enclosure; False traces them all.");
+}
 
 // Binds a stepped solver: step() with the GIL released, solution, residual, iteration.
 template <class Solver, class... Extra>
@@ -76,22 +87,16 @@ void bind_radiosity(py::module_& m) {
       "Unoccluded form factor from a differential area to a planar convex polygon (3-8 vertices) "
       "whose right-hand-rule normal faces the point; 0 if it faces away.");
 
-  py::class_<FormFactorOptions>(m, "FormFactorOptions", "Options of compute_form_factors (keywords only).")
-      .def_readwrite("skip_unneeded", &FormFactorOptions::skip_unneeded,
-                     "Skip visibility rays in a convex enclosure (default True); False traces them all.")
-      .def(py::init([](int quadrature, int shadow_rays, uint64_t seed, int threads, float min_value) {
-             if (quadrature != 1 && quadrature != 3 && quadrature != 7) {
-               throw py::value_error("quadrature must be 1, 3 or 7 points");
-             }
-             if (shadow_rays < 0) throw py::value_error("shadow_rays must be >= 0");
-             if (threads < 0) throw py::value_error("threads must be >= 0");
-             if (!(min_value >= 0.f)) throw py::value_error("min_value must be >= 0");
-             return FormFactorOptions{quadrature, shadow_rays, seed, threads, min_value};
-           }),
-           py::kw_only(), py::arg("quadrature") = 3, py::arg("shadow_rays") = 4, py::arg("seed") = 0,
-           py::arg("threads") = 0, py::arg("min_value") = 0.f)
-      .def_readonly("quadrature", &FormFactorOptions::quadrature)
-      .def_readonly("shadow_rays", &FormFactorOptions::shadow_rays);
+  OptionsClass<FormFactorOptions> form_factor_options(m, "FormFactorOptions", "Options of compute_form_factors.");
+  form_factor_options
+      .field("quadrature", &FormFactorOptions::quadrature,
+             "Points on the receiving patch: 1 (centroid), 3 (degree 2) or 7 (degree 5).")
+      .field("shadow_rays", &FormFactorOptions::shadow_rays,
+             "Visibility rays per quadrature point and source patch; 0 = no occlusion test.", at_least(0))
+      .field("min_value", &FormFactorOptions::min_value, "Entries below this are dropped (0 keeps every non-zero).",
+             at_least(0));
+  add_visibility_fields(form_factor_options);
+  form_factor_options.bind();
 
   py::class_<FormFactorMatrices, std::shared_ptr<FormFactorMatrices>>(m, "FormFactors",
                                                                       "Sparse form factors F (CSR) and F^T.")
@@ -273,26 +278,23 @@ void bind_radiosity(py::module_& m) {
       .value("bf", RefinementOracle::BF)
       .value("importance", RefinementOracle::Importance);
 
-  py::class_<HierarchicalOptions>(m, "HierarchicalOptions", "Options of HierarchicalSolver (keywords only).")
-      .def_readwrite("skip_unneeded", &HierarchicalOptions::skip_unneeded,
-                     "Skip visibility rays in a convex enclosure (default True); False traces them all.")
-      .def(py::init([](RefinementOracle oracle, double epsilon, double min_area, int shadow_rays, int sweeps,
-                       double tolerance, uint64_t seed, int threads, uint64_t max_links) {
-             if (!(epsilon > 0.0)) throw py::value_error("epsilon must be > 0");
-             if (!(min_area >= 0.0)) throw py::value_error("min_area must be >= 0");
-             if (shadow_rays < 0) throw py::value_error("shadow_rays must be >= 0");
-             if (sweeps < 1) throw py::value_error("sweeps must be >= 1");
-             if (!(tolerance > 0.0)) throw py::value_error("tolerance must be > 0");
-             if (max_links < 1) throw py::value_error("max_links must be >= 1");
-             return HierarchicalOptions{oracle, epsilon, min_area, shadow_rays, sweeps, tolerance, seed, threads,
-                                        max_links};
-           }),
-           py::kw_only(), py::arg("oracle") = RefinementOracle::Importance, py::arg("epsilon") = 1e-4,
-           py::arg("min_area") = 0.0, py::arg("shadow_rays") = 1, py::arg("sweeps") = 30,
-           py::arg("tolerance") = 1e-6, py::arg("seed") = 0, py::arg("threads") = 0,
-           py::arg("max_links") = 20000000)
-      .def_readonly("epsilon", &HierarchicalOptions::epsilon)
-      .def_readonly("min_area", &HierarchicalOptions::min_area);
+  OptionsClass<HierarchicalOptions> hierarchical_options(m, "HierarchicalOptions", "Options of HierarchicalSolver.");
+  hierarchical_options
+      .field("oracle", &HierarchicalOptions::oracle, "Which links to refine: by BF or by importance.")
+      .field("epsilon", &HierarchicalOptions::epsilon,
+             "Refinement threshold, relative: of the brightest emission (BF) or of the measurement (importance).",
+             above(0))
+      .field("min_area", &HierarchicalOptions::min_area,
+             "Elements are not split below this area; 0 = 1e-4 of the largest input triangle.", at_least(0))
+      .field("shadow_rays", &HierarchicalOptions::shadow_rays,
+             "Visibility rays per receiver quadrature point (7 per link) and per estimate (2).", at_least(0))
+      .field("sweeps", &HierarchicalOptions::sweeps, "Gauss-Seidel sweeps per step at most.", at_least(1))
+      .field("tolerance", &HierarchicalOptions::tolerance, "Relative change per sweep that ends a step's sweeps.",
+             above(0))
+      .field("max_links", &HierarchicalOptions::max_links, "Refinement stops before exceeding this many links.",
+             at_least(1));
+  add_visibility_fields(hierarchical_options);
+  hierarchical_options.bind();
 
   py::class_<HierarchicalSolver>(m, "HierarchicalSolver",
                                  "Hierarchical radiosity and importance (HSA91, SAS92); stepped.")

@@ -1,10 +1,11 @@
-// What every estimator's binding shares: the result as numpy arrays and a dict, and the checks
+// What every estimator's binding shares: the result as numpy arrays and a dict, and the fields
 // of the options they all take.
 #pragma once
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include "bindings/numpy_util.h"
+#include "bindings/options.h"
 #include <pybind11/stl.h>
 
 #include "geometry/camera.h"
@@ -70,13 +71,29 @@ inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt, bool accu
   return d;
 }
 
-// The options every estimator shares, checked once.
-inline void check_common(uint32_t spp, int max_depth, int rr_depth, int threads, double time_limit) {
-  if (max_depth < -1) throw py::value_error("max_depth must be -1 (unbounded) or >= 0");
-  if (rr_depth < 1) throw py::value_error("rr_depth must be >= 1");
-  if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores)");
-  if (!(time_limit >= 0.0)) throw py::value_error("time_limit must be >= 0");
-  if (spp == 0 && time_limit == 0.0) throw py::value_error("give spp > 0 or a time_limit");
+// The fields of EstimatorOptions, spp named `budget` in Python (the MLT methods count
+// mutations: mutations_per_pixel).
+template <class T>
+void add_estimator_fields(OptionsClass<T>& o, const char* budget, const char* budget_doc) {
+  o.field(budget, &EstimatorOptions::spp, budget_doc)
+      .field("max_depth", &EstimatorOptions::max_depth,
+             "Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.", at_least(-1))
+      .field("rr_depth", &EstimatorOptions::rr_depth, "Russian roulette from this path vertex on.", at_least(1))
+      .field("seed", &EstimatorOptions::seed, "The image depends on the seed only, not on the threads.")
+      .field("threads", &EstimatorOptions::threads, "Worker threads; 0 = all cores.", at_least(0))
+      .field("time_limit", &EstimatorOptions::time_limit, "Seconds of wall time; 0 = none.", at_least(0))
+      .field("skip_unneeded", &EstimatorOptions::skip_unneeded,
+             "Skip work the scene makes pointless; False does it all.");
+}
+
+// The fields only the pixel estimators (path, light, BDPT) read: their sampler and the first
+// sample of one task of a split render.
+template <class T>
+void add_pixel_fields(OptionsClass<T>& o, const char* spp_doc) {
+  add_estimator_fields(o, "spp", spp_doc);
+  o.field("sampler", &EstimatorOptions::sampler, "Where the random numbers come from (core/sampler.h).")
+      .field("first_sample", &EstimatorOptions::first_sample,
+             "First sample index rendered (one task of a split render; see Film).");
 }
 
 inline void check_emitters(const Scene& scene) {

@@ -8,6 +8,7 @@
 // arriving through small openings.
 #pragma once
 #include <cstdint>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,13 @@ struct BdptOptions : EstimatorOptions {
   bool strategy_images = false;
   // Paths of fewer segments are left out (MLT renders direct light separately with them).
   int min_depth = 1;
+
+  void validate() const {
+    EstimatorOptions::validate();
+    if (strategy_images && max_depth < 1) {
+      throw std::invalid_argument("strategy_images needs a bounded max_depth >= 1");
+    }
+  }
 };
 
 // The strategies of paths with 1..max_depth segments, in layer order: by depth, then by t.

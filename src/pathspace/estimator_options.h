@@ -1,6 +1,7 @@
 // What every image estimator is told: its budget, path lengths, seed, threads and sampler.
 #pragma once
 #include <cstdint>
+#include <stdexcept>
 
 #include "core/sampler.h"
 
@@ -20,6 +21,12 @@ struct EstimatorOptions {
   // Renders sample indices [first_sample, first_sample + spp) (particles times the pixel count
   // for the light tracer): one task of a split render (film.h, sample blocks).
   uint32_t first_sample = 0;
+
+  // What no single field's range says (the bindings check those, bindings/options.h): a render
+  // needs a budget. Throws std::invalid_argument.
+  void validate() const {
+    if (spp == 0 && time_limit == 0.0) throw std::invalid_argument("give spp > 0 or a time_limit");
+  }
 };
 
 }  // namespace dualight

@@ -14,6 +14,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,16 @@ struct MltOptions : EstimatorOptions {  // spp counts mutations per pixel; sampl
   // width), and angular offsets of the caustic and multi-chain perturbations, in radians.
   float lens_radius_min = 0.1f, lens_radius_max = 0.f;
   float angle_min = 1e-4f, angle_max = 0.1f;
+
+  // Each field's own range is checked where it is set (bindings/options.h); these relate two.
+  void validate() const {
+    EstimatorOptions::validate();
+    if (lens_radius_max > 0.f && lens_radius_max <= lens_radius_min) {
+      throw std::invalid_argument("need 0 < lens_radius_min < lens_radius_max (pixels; lens_radius_max 0 = auto)");
+    }
+    if (!(angle_max > angle_min)) throw std::invalid_argument("need 0 < angle_min < angle_max < pi (radians)");
+  }
+
   // The chains' target f*: image luminance (Veach), or luminance divided by the square root of a
   // smoothed estimate of the pixel's brightness (mlt_importance.h), from the direct light and
   // `bootstrap` / 4 pilot BDPT samples of their own.

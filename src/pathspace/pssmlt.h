@@ -14,6 +14,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 #include "core/render_control.h"
@@ -47,6 +48,13 @@ struct PssmltOptions : EstimatorOptions {  // spp counts mutations per pixel; sa
   // strategy of that length (needs a bounded max_depth). Chains, mutations and, with a
   // time_limit, time are allocated to lengths in proportion to their bootstrap b_d.
   bool multiplexed = false;
+
+  void validate() const {
+    EstimatorOptions::validate();
+    if (multiplexed && max_depth < 1) {
+      throw std::invalid_argument("multiplexed MLT needs a bounded max_depth >= 1 (chains per path length)");
+    }
+  }
 };
 
 MltResult render_pssmlt(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,

@@ -11,6 +11,7 @@
 // never sampled; the contour formula integrates it exactly.
 #pragma once
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "core/render_control.h"
@@ -29,6 +30,14 @@ struct FormFactorOptions {
   // Skip work the scene makes pointless: visibility rays in a convex enclosure (scene_features.h:
   // facing patches always see each other there); false traces them all.
   bool skip_unneeded = true;
+
+  // The rules there are (triangle_rule); the other fields' ranges are checked where they are set
+  // (bindings/options.h). Throws std::invalid_argument.
+  void validate() const {
+    if (quadrature != 1 && quadrature != 3 && quadrature != 7) {
+      throw std::invalid_argument("quadrature must be 1, 3 or 7 points");
+    }
+  }
 };
 
 // Which rows of F a solve needs (the rest are left empty). Row i serves only B_i = E_i +

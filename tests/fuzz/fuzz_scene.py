@@ -22,12 +22,14 @@ import numpy as np
 with atheris.instrument_imports():
     import dualight
 
+from dualight.radiosity import SOLVERS as PATCH_SOLVERS
 from dualight.radiosity import solve
 
 # Clean, documented refusals; RuntimeError only with a message.
 ACCEPTED = (ValueError, TypeError, FileNotFoundError, RuntimeError)
-METHODS = ("path", "light", "bdpt", "pssmlt", "mmlt", "mlt", "radiosity")
-SOLVERS = ("direct", "jacobi", "gauss_seidel", "southwell", "hierarchical")
+# In this order, so that the regression inputs keep choosing the same methods.
+METHODS = (*dualight.METHODS, "radiosity")
+SOLVERS = (*PATCH_SOLVERS, "hierarchical")
 
 # Interesting coordinates: zero, tiny, huge, non-finite, beyond float32.
 SPECIAL = (0.0, 1e-30, -1e-30, 1e-7, 1e7, 1e30, 3e38, 1e39, np.inf, -np.inf, np.nan)

@@ -11,14 +11,8 @@ is shooting importance and vice versa.
 
 from dualight.radiosity.hierarchical import HierarchicalSolver, HierarchicalStep
 from dualight.radiosity.patches import PatchMesh
-from dualight.radiosity.solution import (
-    ConvergenceWarning,
-    Solution,
-    form_factor_checks,
-    form_factors,
-    receiver,
-    solve,
-)
+from dualight.radiosity.solution import Solution, receiver
+from dualight.radiosity.solve import ConvergenceWarning, form_factor_checks, form_factors, solve
 from dualight.radiosity.solvers import (
     SOLVERS,
     DirectSolver,

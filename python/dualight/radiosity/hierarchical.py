@@ -38,9 +38,13 @@ import numpy as np
 
 from dualight import _core
 from dualight.radiosity.patches import PatchMesh, require_diffuse
+from dualight.radiosity.solution import Solution, camera_samples
 from dualight.scene import Camera, Scene
 
 Oracle = Literal["bf", "importance"]
+
+# The core's defaults of HierarchicalOptions, which checks every value.
+_DEFAULT = _core.HierarchicalOptions()
 
 
 @dataclass(frozen=True)
@@ -74,8 +78,6 @@ def receiver_samples(
     Each sample carries ``1 / (samples in the window * pi)`` of the measurement, the mean
     pixel value of the (windowed) image, as :func:`dualight.radiosity.receiver` defines it.
     """
-    from dualight.radiosity.solution import camera_samples
-
     positions, triangles, _ = scene.triangle_arrays()
     prim, bary, front = camera_samples(
         scene._compile(),
@@ -125,32 +127,21 @@ class HierarchicalSolver:
         *,
         camera: Camera | None = None,
         window: tuple[int, int, int, int] | None = None,
-        oracle: Oracle = "importance",
-        epsilon: float = 1e-3,
+        oracle: Oracle = _DEFAULT.oracle.name,  # type: ignore[assignment]
+        epsilon: float = _DEFAULT.epsilon,
         min_area: float | None = None,
-        shadow_rays: int = 1,
-        sweeps: int = 30,
-        tolerance: float = 1e-6,
-        seed: int = 0,
-        threads: int = 0,
-        max_links: int = 20_000_000,
-        skip: bool = True,
+        shadow_rays: int = _DEFAULT.shadow_rays,
+        sweeps: int = _DEFAULT.sweeps,
+        tolerance: float = _DEFAULT.tolerance,
+        seed: int = _DEFAULT.seed,
+        threads: int = _DEFAULT.threads,
+        max_links: int = _DEFAULT.max_links,
+        skip: bool = _DEFAULT.skip_unneeded,
     ) -> None:
-        if oracle not in ("bf", "importance"):
-            raise ValueError(f"oracle must be 'bf' or 'importance', got {oracle!r}")
-        require_diffuse(scene)
-        if not scene.has_emitters:
-            raise ValueError("scene has no emitter: give some mesh a positive emission")
-        cam = camera or scene.camera
-        if cam is None:
-            raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
         if min_area is not None and not min_area > 0:
             raise ValueError(f"min_area must be > 0, got {min_area!r}")
-        self.scene, self.camera, self.oracle, self.epsilon = scene, cam, oracle, epsilon
-        start = time.perf_counter()
-        prim, b1, b2, weight = receiver_samples(scene, cam, window=window, seed=seed)
         options = _core.HierarchicalOptions(
-            oracle=getattr(_core.RefinementOracle, oracle),
+            oracle=oracle,
             epsilon=epsilon,
             min_area=min_area or 0.0,
             shadow_rays=shadow_rays,
@@ -159,8 +150,17 @@ class HierarchicalSolver:
             seed=seed,
             threads=threads,
             max_links=max_links,
+            skip_unneeded=skip,
         )
-        options.skip_unneeded = bool(skip)
+        require_diffuse(scene)
+        if not scene.has_emitters:
+            raise ValueError("scene has no emitter: give some mesh a positive emission")
+        cam = camera or scene.camera
+        if cam is None:
+            raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
+        self.scene, self.camera, self.oracle, self.epsilon = scene, cam, oracle, epsilon
+        start = time.perf_counter()
+        prim, b1, b2, weight = receiver_samples(scene, cam, window=window, seed=seed)
         self._core = _core.HierarchicalSolver(scene._compile(), prim, b1, b2, weight, options)
         self.setup_seconds = time.perf_counter() - start
         self.history: list[HierarchicalStep] = []
@@ -194,10 +194,8 @@ class HierarchicalSolver:
         """Every link: receiver and source input triangles and element centroids, and F."""
         return self._core.links()
 
-    def solution(self) -> Any:
+    def solution(self) -> Solution:
         """The current leaves as a :class:`dualight.radiosity.Solution`."""
-        from dualight.radiosity.solution import Solution
-
         leaves = self._core.leaves()
         _, _, mesh_of_triangle = self.scene.triangle_arrays()
         n = len(leaves["area"])
