@@ -169,6 +169,11 @@ class Bsdf:
         Sample wi for each row of wo (N, 3) with random numbers u (N, 2): a dict of wi (N, 3), weight = f |cos wi| / pdf (N, 3), pdf_w (N,) (the lobe's probability when delta), delta (N,) and valid (N,), False where sampling failed (the other fields are then 0).
         """
     @property
+    def flags(self) -> list[str]:
+        """
+        What the BSDF is, as it reports itself: a subset of diffuse, glossy, specular (Dirac lobes), reflection, transmission.
+        """
+    @property
     def is_delta(self) -> bool:
         ...
     @property
