@@ -8,6 +8,19 @@
 
 namespace dualight {
 
+// BDPT as the MLT methods' chains and bootstraps evaluate it (PssmltOptions or MltOptions): the
+// render's depths and heuristic, without the paths of 1 and 2 segments when render_direct_light
+// renders them apart (direct_spp > 0).
+template <class ChainOptions>
+BdptOptions chain_bdpt(const ChainOptions& opt) {
+  BdptOptions bdpt;
+  bdpt.max_depth = opt.max_depth;
+  bdpt.rr_depth = opt.rr_depth;
+  bdpt.heuristic = opt.heuristic;
+  bdpt.min_depth = opt.direct_spp > 0 ? 3 : 1;
+  return bdpt;
+}
+
 // At most `spp` samples per pixel; with time_limit > 0 (seconds), fewer if that runs out first.
 inline RenderResult render_direct_light(const Scene& scene, const PinholeCamera& camera, const EstimatorOptions& base,
                                         uint32_t spp, MisHeuristic heuristic, RenderControl& control,

@@ -266,7 +266,7 @@ ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const
     start.direct = direct.stats;
   }
   const bool direct_only = opt.direct_spp > 0 && opt.max_depth >= 0 && opt.max_depth <= 2;
-  const BdptOptions bdpt = bootstrap_bdpt(opt);
+  const BdptOptions bdpt = chain_bdpt(opt);
   const uint64_t boot_seed = hash_combine(opt.seed, kBootstrapStream);
   const size_t n_boot = std::max<uint32_t>(opt.bootstrap, 1);
   if (!direct_only && opt.importance == MltImportance::Flattened && !control.cancelled()) {
@@ -345,7 +345,7 @@ ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltO
     throw std::invalid_argument("the chain start-up holds no bootstrap or chain seeds for these chains");
   }
   PopulationPart& pop = part.populations.front();
-  const BdptOptions bdpt = bootstrap_bdpt(opt);
+  const BdptOptions bdpt = chain_bdpt(opt);
   const PixelImportance importance = importance_of(start, camera);
   std::vector<Chain> chains;
   {

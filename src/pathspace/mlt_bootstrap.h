@@ -7,22 +7,12 @@
 
 #include "core/sampler.h"
 #include "pathspace/bdpt_sample.h"
+#include "pathspace/direct_light.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/mlt.h"
 #include "pathspace/subpath.h"
 
 namespace dualight {
-
-// BDPT's options for the bootstrap; with the direct light rendered apart (direct_spp > 0) the
-// strategies start at depth 3.
-inline BdptOptions bootstrap_bdpt(const MltOptions& opt) {
-  BdptOptions bdpt;
-  bdpt.max_depth = opt.max_depth;
-  bdpt.rr_depth = opt.rr_depth;
-  bdpt.heuristic = opt.heuristic;
-  bdpt.min_depth = opt.direct_spp > 0 ? 3 : 1;
-  return bdpt;
-}
 
 // One BDPT sample of the bootstrap (a uniform film position, every strategy); calls
 // visit(s, t, unweighted, mis weight, sampled, raster) for each strategy that carries light.

@@ -1,10 +1,10 @@
 // Primary-sample-space chains' states (PSSMLT and MMLT): what one evaluation of the primary
-// samples contributes to the film, and the BDPT settings the chains' evaluations use.
+// samples contributes to the film.
 #pragma once
 #include <vector>
 
 #include "film/splat_list.h"
-#include "pathspace/bdpt.h"
+#include "pathspace/direct_light.h"
 #include "pathspace/pssmlt.h"
 
 namespace dualight {
@@ -16,16 +16,5 @@ struct Contribution {
   std::vector<Splat> splats;
   float f = 0.f;
 };
-
-// BDPT as the chains evaluate it: the render's depths and heuristic, and without the paths of 1
-// and 2 segments when the direct light is rendered apart.
-inline BdptOptions chain_bdpt(const PssmltOptions& opt) {
-  BdptOptions bdpt;
-  bdpt.max_depth = opt.max_depth;
-  bdpt.rr_depth = opt.rr_depth;
-  bdpt.heuristic = opt.heuristic;
-  bdpt.min_depth = opt.direct_spp > 0 ? 3 : 1;
-  return bdpt;
-}
 
 }  // namespace dualight

@@ -13,7 +13,7 @@ namespace {
 template <class Visit>
 void for_each_bootstrap_path(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt, size_t count,
                              const Visit& visit) {
-  const BdptOptions bdpt = bootstrap_bdpt(opt);
+  const BdptOptions bdpt = chain_bdpt(opt);
   Subpaths paths;
   TraceCounters counters;
   for (size_t i = 0; i < count; ++i) {
