@@ -231,6 +231,14 @@ def test_compiled_scene_checks_material_arrays() -> None:
         _core.Scene(*args, kind=np.array([2], np.uint32), ior=np.array([-1.0]))
     with pytest.raises(ValueError, match=r"mirror reflectance must be finite and in \[0, 1\]"):
         _core.Scene(*args[:3], np.full((1, 3), 1.5, np.float32), args[4], kind=np.array([1]))
+    # The BSDFs as core objects (what dualight.Scene passes): their own parameters, one each.
+    glass = _core.Bsdf(_core.BsdfKind.dielectric, ior=1.5)
+    compiled = _core.Scene(*args, bsdfs=[glass])
+    assert compiled.features["dielectric"] and not _core.Scene(*args).features["dielectric"]
+    with pytest.raises(ValueError, match=r"bsdfs needs one entry per material \(1\)"):
+        _core.Scene(*args, bsdfs=[glass, glass])
+    with pytest.raises(ValueError, match="give bsdfs or kind and ior, not both"):
+        _core.Scene(*args, kind=np.array([2], np.uint32), bsdfs=[glass])
 
 
 def test_mirror_reflects_an_emitter_exactly() -> None:

@@ -62,9 +62,10 @@ class Material:
     """Base class of every material :meth:`dualight.Scene.add_mesh` accepts.
 
     A subclass names its core BSDF (``_kind``, a :class:`dualight._core.BsdfKind` name) and
-    gives the core's parameters (``_core_parameters``) and the RGB it stands for in
-    ``Mesh.reflectance`` (:attr:`rgb_reflectance`); everything else, what the material *is*,
-    comes from the core BSDF's flags, so no caller lists material types.
+    gives the core's parameters (``_core_parameters``; a BSDF with other parameters overrides
+    ``_core_bsdf``) and the RGB it stands for in ``Mesh.reflectance``
+    (:attr:`rgb_reflectance`); everything else, what the material *is*, comes from the core
+    BSDF's flags, so no caller lists material types.
     """
 
     __slots__ = ()
@@ -73,6 +74,13 @@ class Material:
     def _core_parameters(self) -> tuple[RGB, float]:
         """``(reflectance, ior)`` as the core's ``Scene(kind=..., ior=...)`` arrays take them."""
         raise NotImplementedError
+
+    def _core_bsdf(self) -> Any:
+        """The core BSDF (a ``dualight._core.Bsdf``) the compiled scene uses for this material."""
+        from dualight import _core
+
+        reflectance, ior = self._core_parameters()
+        return _core.Bsdf(getattr(_core.BsdfKind, self._kind), reflectance=reflectance, ior=ior)
 
     @property
     def rgb_reflectance(self) -> RGB:

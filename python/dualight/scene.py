@@ -421,18 +421,14 @@ class Scene:
             positions, triangles, material_of = self.triangle_arrays()
             reflectance = np.array([m.reflectance for m in self._meshes], np.float32)
             emission = np.array([m.emission for m in self._meshes], np.float32)
-            kind = np.array(
-                [int(getattr(_core.BsdfKind, m.material._kind)) for m in self._meshes], np.uint32
-            )
-            ior = np.array([m.material._core_parameters()[1] for m in self._meshes], np.float32)
+            bsdfs = [m.material._core_bsdf() for m in self._meshes]
             self._compiled = _core.Scene(
                 positions.astype(np.float32),
                 triangles.astype(np.uint32),
                 material_of.astype(np.uint32),
                 reflectance,
                 emission,
-                kind=kind,
-                ior=ior,
+                bsdfs=bsdfs,
             )
         return self._compiled
 

@@ -25,7 +25,8 @@ Vec3 to_vec3(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
 std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray& triangles,
                                   const IndexArray& material_of, const FloatArray& reflectance,
                                   const FloatArray& emission, const std::optional<IndexArray>& kind,
-                                  const std::optional<FloatArray>& ior) {
+                                  const std::optional<FloatArray>& ior,
+                                  const std::optional<std::vector<BsdfObject>>& bsdfs) {
   std::vector<float> p = rows_of(positions, 3, "positions");
   std::vector<uint32_t> t = rows_of(triangles, 3, "triangles");
   if (material_of.ndim() != 1) throw py::value_error("material_of must be one-dimensional");
@@ -41,11 +42,15 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
   };
   per_material(kind, "kind");
   per_material(ior, "ior");
+  if (bsdfs && (kind || ior)) throw py::value_error("give bsdfs or kind and ior, not both");
+  if (bsdfs && bsdfs->size() != n_materials) {
+    throw py::value_error("bsdfs needs one entry per material (" + std::to_string(n_materials) + ")");
+  }
   std::vector<Material> materials;
   for (size_t i = 0; i < n_materials; ++i) {
     const uint32_t k = kind ? kind->data()[i] : static_cast<uint32_t>(BsdfKind::Lambertian);
     const float eta = ior ? ior->data()[i] : 1.5f;
-    materials.push_back({make_bsdf(k, Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2]), eta),
+    materials.push_back({bsdfs ? (*bsdfs)[i].bsdf : make_bsdf(k, Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2]), eta),
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
   py::gil_scoped_release release;  // the BVH build can take a while on large meshes
@@ -59,10 +64,11 @@ void bind_geometry(py::module_& m) {
                                             "Immutable triangle scene committed to Embree (built by dualight.Scene).")
       .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
            py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
-           py::arg("ior") = py::none(),
-           "Triangles with one material per row of reflectance and emission. kind (BsdfKind values, "
-           "default lambertian) and ior (a dielectric's interior IOR) are optional per-material arrays; "
-           "reflectance is the diffuse albedo or the mirror's reflectance.")
+           py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(),
+           "Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one "
+           "dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a "
+           "dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse "
+           "albedo or the mirror's reflectance.")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly(

@@ -45,11 +45,6 @@ namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
-// pybind11/stl.h converts std::variant by value, so the bound class wraps the variant.
-struct BsdfObject {
-  Bsdf bsdf;
-};
-
 std::vector<std::string> flag_names(BsdfFlags f) {
   std::vector<std::string> names;
   for (const auto& [flag, name] : {std::pair{BsdfFlags::Diffuse, "diffuse"}, std::pair{BsdfFlags::Glossy, "glossy"},

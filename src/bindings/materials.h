@@ -21,4 +21,11 @@ static_assert(std::is_same_v<std::variant_alternative_t<0, Bsdf>, Lambertian> &&
 // the problem: an unknown kind, a reflectance outside [0, 1], an IOR that is not finite and > 0.
 Bsdf make_bsdf(uint32_t kind, const Color& reflectance, float ior);
 
+// The bound class `Bsdf` (pybind11/stl.h converts std::variant by value, so it wraps the
+// variant): one BSDF made with its own keywords, which the scene binding also takes as a list,
+// so a BSDF's parameters are bound in one place.
+struct BsdfObject {
+  Bsdf bsdf;
+};
+
 }  // namespace dualight::bindings

@@ -13,6 +13,7 @@
 #include "core/frame.h"
 #include "core/sampling.h"
 #include "lights/emitter_flags.h"
+#include "lights/emitter_sample.h"
 
 namespace dualight {
 
@@ -24,33 +25,9 @@ struct AreaEmitter {
   Color Le;           // radiance leaving the front side
 };
 
-// A point on an emitter, with its area density (selection included).
-struct EmitterPoint {
-  Vec3 p, n;
-  float pdf_a = 0.f;     // area density, or the probability of a point emitter's point
-  uint32_t prim = 0;     // the scene triangle it lies on (when on_surface)
-  bool on_surface = true;  // false: a point in free space (no cosine, no material there)
-};
-// A direction of emission from an emitter point.
-struct EmitterDirection {
-  Vec3 w;             // unit
-  float pdf_w = 0.f;  // solid-angle density
-  Color beta;         // Le |cos| / (pdf_a pdf_w): the light subpath's throughput after it
-};
-// Next-event estimation: a point on the emitter seen from a reference point.
-struct LightSample {
-  Vec3 p, n;
-  Vec3 wi;            // unit, from the reference point towards p
-  float dist2 = 0.f;  // squared distance to p
-  float pdf_w = 0.f;  // solid-angle density at the reference point (selection included)
-  Color Le;                // radiance arriving from p
-  uint32_t prim = 0;       // the emitting triangle (the shadow ray's target), when on_surface
-  bool on_surface = true;  // false: p is in free space (the shadow ray ends at p)
-};
-
 constexpr EmitterFlags flags(const AreaEmitter&) { return EmitterFlags::Surface; }
 
-// The total power's weight for the emitter choice: area times mean radiance (pi cancels).
+// The emitter choice's weight: flux / pi (area times mean radiance here).
 inline double power(const AreaEmitter& e) { return static_cast<double>(e.area) * average(e.Le); }
 
 // Radiance leaving the emitter towards w (any length): one-sided.

@@ -1,9 +1,16 @@
 // Emitters: a closed set held in a std::variant, evaluated by free functions (pbrt-v4's
 // base/light.h). Each member lives in its own file with its flags and maths: emission
 // (radiance, sample_Le_* / pdf_Le_* for light subpaths) and next-event estimation (sample_Li /
-// pdf_Li). Estimators ask through the dispatchers here and decide by flags (emitter_flags.h);
-// none writes an emitter's density itself. The scene chooses among emitters in proportion to
-// power (emitter_sampler.h) and passes that choice's probability in.
+// pdf_Li), with the types of emitter_sample.h. Estimators ask through the dispatchers here and
+// decide by flags (emitter_flags.h); none writes an emitter's density itself. The scene chooses
+// among emitters in proportion to power (emitter_sampler.h) and passes that choice's
+// probability in.
+//
+// Conventions every member keeps: power() is flux / pi (the choice's weight; an area emitter's
+// area times mean radiance, a point's 4 times its mean intensity); radiance(e, w) is what leaves
+// the emitter's point towards w, in the measure its position density uses (a point emitter: its
+// intensity, its position's density a discrete probability); a member without a surface samples
+// positions with on_surface = false and a zero normal, and paths never hit it.
 #pragma once
 #include <variant>
 

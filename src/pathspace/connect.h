@@ -28,7 +28,8 @@ inline Vertex camera_vertex(const PinholeCamera& camera) {
 // t = 1: the light subpath vertex qs seen by the camera.
 inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, const Vertex& qs, Point2& raster,
                                TraceCounters& counters) {
-  if (!qs.connectible() || !camera.raster_position(qs.p, raster)) {
+  // A point emitter is not seen through a pinhole (two delta positions never meet).
+  if (!qs.connectible() || qs.at_point || !camera.raster_position(qs.p, raster)) {
     ++counters.skipped_connections;
     return Color(0.f);
   }

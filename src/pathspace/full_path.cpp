@@ -68,6 +68,8 @@ double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced) 
 }
 
 double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool forced) {
+  // No walk hits a vertex without a surface (a point emitter at x_0).
+  if (!z[i].on_surface()) return 0.0;
   const Vertex& v = z[i + 1];
   const Vec3 w = direction(v, z[i]);
   if (i + 2 == z.size()) return solid_angle_to_area(camera.pdf_w(w), v, z[i]);

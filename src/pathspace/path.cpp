@@ -86,7 +86,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
     // camera's We / pdf = 1, or the emitter's Le |cos| / pdf_w.
     Color factor(1.f);
     if (prev.type == VertexType::Light) {
-      factor = emitted_towards(prev, v.p) * (dot(prev.n, w) / pdf_w_at(prev, w));
+      factor = emitted_towards(prev, v.p) * ((prev.on_surface() ? dot(prev.n, w) : 1.f) / pdf_w_at(prev, w));
     } else if (prev.type == VertexType::Surface) {
       if (prev.delta) continue;  // the discrete lobe's weight is not a density ratio
       const Frame frame = Frame::from_normal(prev.n);

@@ -42,7 +42,9 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Frame& 
                                      : shadow_ray_visible_point(scene, hit.p, hit.n, ls.p, counters);
   if (!visible) return Color(0.f);
   const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
-  const float weight = power_heuristic(ls.pdf_w, pdf_bsdf_w);
+  // A delta-position emitter (a point light) is found by no BSDF sample: its sample keeps full
+  // weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
+  const float weight = is_delta_position(*choice.emitter) ? 1.f : power_heuristic(ls.pdf_w, pdf_bsdf_w);
   return beta * f * ls.Le * (std::abs(wi.z) * weight / ls.pdf_w);
 }
 

@@ -11,8 +11,15 @@
 namespace dualight {
 
 // Whether a render with this camera may skip its shadow rays.
+// Emitters off the surfaces are path vertices too: each must be a point inside the enclosure.
 inline bool connections_unoccluded(const Scene& scene, const PinholeCamera& camera, bool skip_unneeded) {
-  return skip_unneeded && scene.features().unoccluded() && scene.features().encloses(camera.origin());
+  const SceneFeatures& f = scene.features();
+  if (!(skip_unneeded && f.unoccluded() && f.encloses(camera.origin()))) return false;
+  for (const Emitter& e : scene.emitters()) {
+    if (has_any(flags(e), EmitterFlags::Surface)) continue;
+    if (!is_delta_position(e) || !f.encloses(sample_Le_position(e, 1.f, {0.5f, 0.5f}).p)) return false;
+  }
+  return true;
 }
 
 // Scene::visible, or true without a ray when the counters say connections are unoccluded.
