@@ -87,6 +87,64 @@ def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
     return out
 
 
+def _budget(
+    estimator: Estimator,
+    spp: int | None,
+    time_limit: float | None,
+    threads: int | None,
+    mutations_per_pixel: int | None,
+) -> tuple[int | None, int | None]:
+    """render's own keywords where None means something (the core's options take 0 for it),
+    checked: ``(spp, threads)`` as the render uses them. The core checks the rest as it builds
+    the options."""
+    if spp is None and time_limit is None:
+        raise ValueError("give spp, time_limit, or both")
+    if spp is not None:
+        _check_int("spp", spp, 1)
+        if spp >= 1 << 32:
+            raise ValueError(f"spp must be < 2**32, got {spp}")
+    if time_limit is not None and (
+        isinstance(time_limit, bool)
+        or not isinstance(time_limit, numbers.Real)
+        or not 0 < time_limit < float("inf")
+    ):
+        raise ValueError(f"time_limit must be a finite number > 0 of seconds, got {time_limit!r}")
+    if threads is not None:
+        _check_int("threads", threads, 1)
+        threads = min(threads, os.cpu_count() or threads)
+    if mutations_per_pixel is not None:
+        if not estimator.metropolis:
+            raise ValueError(f"mutations_per_pixel applies to {', '.join(METROPOLIS)} only")
+        _check_int("mutations_per_pixel", mutations_per_pixel, 1)
+        spp = mutations_per_pixel
+    return spp, threads
+
+
+def _progress_callback(
+    progress: bool | ProgressCallback | None, bar: _TqdmProgress | None
+) -> ProgressCallback | None:
+    """The core's progress callback for render's ``progress``: the tqdm ``bar`` for True."""
+    if progress is True:
+        return bar
+    if progress is False or progress is None:
+        return None
+    if callable(progress):
+        return progress
+    raise TypeError("progress must be True, False or a callable(done, total)")
+
+
+def _image(result: Mapping[str, Any], stats: dict[str, Any], strategy_images: bool) -> Image:
+    """The core's result as an Image; a KeyboardInterrupt carrying it when Ctrl-C stopped it."""
+    image = Image(result["mean"], variance=result["variance"], stats=stats)
+    if strategy_images:
+        image.strategies = dict(result["strategies"])
+    if result["keyboard_interrupt"]:
+        interrupt = KeyboardInterrupt(f"render interrupted after {stats['samples']} samples")
+        interrupt.partial_result = image  # type: ignore[attr-defined]
+        raise interrupt
+    return image
+
+
 def render(
     scene: Scene,
     method: str = "path",
@@ -229,28 +287,7 @@ def render(
     if method not in ESTIMATORS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
     estimator = ESTIMATORS[method]
-    # render's own keywords where None means something (the core's options take 0 for it);
-    # the core checks the rest as it builds the options below.
-    if spp is None and time_limit is None:
-        raise ValueError("give spp, time_limit, or both")
-    if spp is not None:
-        _check_int("spp", spp, 1)
-        if spp >= 1 << 32:
-            raise ValueError(f"spp must be < 2**32, got {spp}")
-    if time_limit is not None and (
-        isinstance(time_limit, bool)
-        or not isinstance(time_limit, numbers.Real)
-        or not 0 < time_limit < float("inf")
-    ):
-        raise ValueError(f"time_limit must be a finite number > 0 of seconds, got {time_limit!r}")
-    if threads is not None:
-        _check_int("threads", threads, 1)
-        threads = min(threads, os.cpu_count() or threads)
-    if mutations_per_pixel is not None:
-        if not estimator.metropolis:
-            raise ValueError(f"mutations_per_pixel applies to {', '.join(METROPOLIS)} only")
-        _check_int("mutations_per_pixel", mutations_per_pixel, 1)
-        spp = mutations_per_pixel
+    spp, threads = _budget(estimator, spp, time_limit, threads, mutations_per_pixel)
     if mlt is not None and not estimator.metropolis:
         raise ValueError(f"mlt options apply to the MLT methods only ({', '.join(METROPOLIS)})")
     if mlt is not None and not isinstance(mlt, Mapping):
@@ -295,17 +332,8 @@ def render(
     cam = camera or scene.camera
     assert cam is not None
 
-    bar = None
-    callback: ProgressCallback | None
-    if progress is True:
-        bar = _TqdmProgress(f"dualight {method}")
-        callback = bar
-    elif progress is False or progress is None:
-        callback = None
-    elif callable(progress):
-        callback = progress
-    else:
-        raise TypeError("progress must be True, False or a callable(done, total)")
+    bar = _TqdmProgress(f"dualight {method}") if progress is True else None
+    callback = _progress_callback(progress, bar)
     try:
         if executor is not None:
             # Each task uses `threads` threads (default 1: the workers give the parallelism);
@@ -335,11 +363,4 @@ def render(
     if method == "bdpt":
         stats["heuristic"] = heuristic
     stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
-    image = Image(result["mean"], variance=result["variance"], stats=stats)
-    if strategy_images:
-        image.strategies = dict(result["strategies"])
-    if result["keyboard_interrupt"]:
-        interrupt = KeyboardInterrupt(f"render interrupted after {stats['samples']} samples")
-        interrupt.partial_result = image  # type: ignore[attr-defined]
-        raise interrupt
-    return image
+    return _image(result, stats, strategy_images)
