@@ -177,6 +177,11 @@ class Bsdf:
     def is_delta(self) -> bool:
         ...
     @property
+    def is_diffuse_reflector(self) -> bool:
+        """
+        Only diffuse reflection: what radiosity can solve.
+        """
+    @property
     def kind(self) -> BsdfKind:
         ...
 class Film:

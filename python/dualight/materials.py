@@ -51,11 +51,11 @@ def _reflectance(value: Any, owner: str) -> RGB:
 
 
 @functools.cache
-def _flags_of_kind(kind: str) -> frozenset[str]:
-    """The core BSDF's own flags for a kind (they depend on the kind alone)."""
+def _core_bsdf_of_kind(kind: str) -> Any:
+    """A core BSDF of a kind, for what depends on the kind alone (its flags)."""
     from dualight import _core
 
-    return frozenset(_core.Bsdf(getattr(_core.BsdfKind, kind)).flags)
+    return _core.Bsdf(getattr(_core.BsdfKind, kind))
 
 
 class Material:
@@ -91,13 +91,12 @@ class Material:
     def flags(self) -> frozenset[str]:
         """What the material is, from its core BSDF: a subset of ``"diffuse"``, ``"glossy"``,
         ``"specular"`` (Dirac lobes), ``"reflection"`` and ``"transmission"``."""
-        return _flags_of_kind(self._kind)
+        return frozenset(_core_bsdf_of_kind(self._kind).flags)
 
     @property
     def is_diffuse_reflector(self) -> bool:
-        """Only diffuse reflection: what radiosity can solve."""
-        f = self.flags
-        return "diffuse" in f and not f & {"glossy", "specular", "transmission"}
+        """Only diffuse reflection: what radiosity can solve (the core's own test of its flags)."""
+        return bool(_core_bsdf_of_kind(self._kind).is_diffuse_reflector)
 
     @property
     def has_specular(self) -> bool:

@@ -87,6 +87,9 @@ void bind_materials(py::module_& m) {
            py::arg("ior") = 1.5f)
       .def_property_readonly("kind", [](const BsdfObject& b) { return static_cast<BsdfKind>(b.bsdf.index()); })
       .def_property_readonly("is_delta", [](const BsdfObject& b) { return is_delta(b.bsdf); })
+      .def_property_readonly(
+          "is_diffuse_reflector", [](const BsdfObject& b) { return is_diffuse_reflector(flags(b.bsdf)); },
+          "Only diffuse reflection: what radiosity can solve.")
       .def_property_readonly("flags", [](const BsdfObject& b) { return flag_names(flags(b.bsdf)); },
                              "What the BSDF is, as it reports itself: a subset of diffuse, glossy, "
                              "specular (Dirac lobes), reflection, transmission.")

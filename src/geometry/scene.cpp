@@ -62,7 +62,8 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     if (has_any(flags(e), EmitterFlags::Surface)) {
       throw std::invalid_argument("surface emitters come from the materials' emission, not the emitter list");
     }
-    if (!(power(e) >= 0.0) || !std::isfinite(power(e))) throw std::invalid_argument("emitter power must be finite");
+    const double p = power(e);
+    if (!(p >= 0.0 && std::isfinite(p))) throw std::invalid_argument("emitter power must be finite and >= 0");
     emitters_.push_back(std::move(e));
   }
   emitter_sampler_ = PowerEmitterSampler(emitters_);

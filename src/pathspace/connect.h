@@ -15,6 +15,13 @@
 
 namespace dualight {
 
+// A segment made by connecting a and b (neither specular): visibility, one shadow ray, aimed at
+// the vertex itself where it has no surface (the camera, a point emitter).
+inline bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
+  if (b.on_surface() && !a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
+  return shadow_ray_visible_to(scene, a.p, a.n, b.p, b.prim, b.on_surface(), counters);
+}
+
 // Vertex standing for the pinhole camera in t = 1 connections.
 inline Vertex camera_vertex(const PinholeCamera& camera) {
   Vertex c;
@@ -82,9 +89,7 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
     ++counters.skipped_connections;
     return L;
   }
-  const bool visible = qs.on_surface() ? shadow_ray_visible(scene, pt.p, pt.n, qs.p, qs.prim, counters)
-                                       : shadow_ray_visible_point(scene, pt.p, pt.n, qs.p, counters);
-  return visible ? L : Color(0.f);
+  return connect_visible(scene, pt, qs, counters) ? L : Color(0.f);
 }
 
 }  // namespace dualight

@@ -99,13 +99,6 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
   return true;
 }
 
-bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
-  // A point with no surface (the camera, a point emitter) is aimed at itself.
-  if (!b.on_surface()) return shadow_ray_visible_point(scene, a.p, a.n, b.p, counters);
-  if (!a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
-  return shadow_ray_visible(scene, a.p, a.n, b.p, b.prim, counters);
-}
-
 bool sample_scatter(const Vertex& v, const Vec3& wo, TransportMode mode, Point2 u, Vec3& wi) {
   const Frame frame = Frame::from_normal(v.n);
   BsdfSample bs;

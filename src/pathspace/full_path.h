@@ -11,6 +11,7 @@
 // so its density is prob * that ratio * G. With this convention the deltas cancel in every
 // ratio f / T that the acceptance probability takes [Veach 1997, sec. 5.2 and 11.4.3].
 #pragma once
+#include "pathspace/connect.h"
 #include "pathspace/path.h"
 #include "pathspace/render_stats.h"
 
@@ -61,8 +62,6 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
 // The surface point a ray from `from` along unit d hits first, as a surface vertex.
 bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters);
 
-// A segment made by connecting a and b (both non-specular): visibility, one shadow ray.
-bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters);
 
 // Samples a scattering direction at surface vertex v arriving from direction wo (world, unit), as
 // BSDF sampling in `mode` does; false when the BSDF absorbs.

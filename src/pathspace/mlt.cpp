@@ -369,9 +369,8 @@ ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltO
   run_chain_rounds(
       opt.threads, chains.size(), rounds, elapsed, control, rays,
       [&](size_t c, TraceCounters& counters) {
-        return MltStep{camera,    mutations, importance,
-                       hooks,     chains[c], counts[c],
-                       scale,     MutationContext{scene, camera, bdpt.min_depth, opt.max_depth, counters}};
+        const MutationContext ctx{scene, camera, bdpt.min_depth, opt.max_depth, counters};
+        return MltStep{camera, mutations, importance, hooks, chains[c], counts[c], scale, ctx};
       },
       [&](size_t, const SplatList& splats) {
         for (const Splat& sp : splats.splats()) {

@@ -230,8 +230,8 @@ bool run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const Chain
   run_chain_rounds(
       opt.threads, n_chains, rounds, elapsed, control, rays,
       [&](size_t c, TraceCounters& counters) {
-        return PssmltStep<decltype(make())>{opt,       per_h,        chains[c], make(), counters, pop.large_f[c],
-                                            accepted[c], large_acc[c], zero[c],  invalid};
+        return PssmltStep<decltype(make())>{opt, per_h, chains[c], make(), counters,
+                                            pop.large_f[c], accepted[c], large_acc[c], zero[c], invalid};
       },
       [&](size_t, const SplatList& splats) {
         for (const Splat& sp : splats.splats()) {

@@ -44,4 +44,11 @@ inline bool shadow_ray_visible_point(const Scene& scene, const Vec3& p0, const V
   return scene.visible_point(p0, n0, p1);
 }
 
+// To p1 on triangle `target` when `on_surface`, else to p1 in free space (a point emitter).
+inline bool shadow_ray_visible_to(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target,
+                                  bool on_surface, TraceCounters& counters) {
+  return on_surface ? shadow_ray_visible(scene, p0, n0, p1, target, counters)
+                    : shadow_ray_visible_point(scene, p0, n0, p1, counters);
+}
+
 }  // namespace dualight
