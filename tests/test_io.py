@@ -692,8 +692,17 @@ def test_mirroring_transforms_keep_mitsubas_sides(
       <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>"""
     path = _xml(tmp_path, body)
     lit = float(np.array(mi.render(mi.load_file(str(path)), spp=4)).max()) > 0.5
-    image = dualight.render(dualight.load_mitsuba_xml(path), spp=4, max_depth=1, progress=False)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always", UserWarning)
+        scene = dualight.load_mitsuba_xml(path)
+        image = dualight.render(scene, spp=4, max_depth=1, progress=False)
     assert lit == (float(np.asarray(image).max()) > 0.5)
+    # a lone flat emitter turned away from the camera faces nothing, and render says so (a
+    # sphere turned inside out faces its own inside: not seen, but not facing nothing)
+    warned = any("faces nothing" in str(w.message) for w in record)
+    assert not (warned and lit)
+    if shape in ("rectangle", "ply"):
+        assert warned == (not lit)
 
 
 @pytest.mark.mitsuba
