@@ -135,6 +135,13 @@ CAMERA = [
     ("resolution negative", _camera(resolution=(-4, 4)), ValueError, "resolution"),
     ("resolution fractional", _camera(resolution=(8.5, 8)), ValueError, "resolution"),
     ("resolution one number", _camera(resolution=(8,)), ValueError, "resolution"),
+    (
+        "resolution an int",
+        _camera(resolution=32),
+        ValueError,  # fixed: "'int' object is not iterable"
+        r"resolution must be a pair.*resolution=\(32, 32\)",
+    ),
+    ("resolution bools", _camera(resolution=(True, 8)), ValueError, "resolution"),  # fixed
     ("fov 0", _camera(fov=0), ValueError, r"fov must be in \(0, 180\)"),
     ("fov 180", _camera(fov=180), ValueError, r"fov must be in \(0, 180\)"),
     ("fov negative", _camera(fov=-5), ValueError, "fov"),
@@ -299,6 +306,8 @@ RENDER = [
     ("spp negative", _render(spp=-3), ValueError, "spp must be"),
     ("spp fractional", _render(spp=2.5), ValueError, "spp must be"),
     ("spp >= 2**32", _render(spp=1 << 32), ValueError, "spp must be < 2"),
+    ("spp a bool", _render(spp=True), ValueError, "spp must be an integer"),
+    ("spp numpy bool", _render(spp=np.True_), ValueError, "spp must be an integer"),
     ("no budget", _render(spp=None), ValueError, "spp, time_limit"),
     ("time_limit negative", _render(time_limit=-1.0), ValueError, "time_limit must be"),
     ("time_limit NaN", _render(time_limit=np.nan), ValueError, "time_limit must be"),
@@ -315,6 +324,9 @@ RENDER = [
     ("rr_depth 0", _render(rr_depth=0), ValueError, "rr_depth must be"),
     ("rr_depth >= 2**31", _render(rr_depth=1 << 31), ValueError, "rr_depth must be"),  # fixed
     ("seed negative", _render(seed=-1), ValueError, "seed must be"),
+    ("seed a bool", _render(seed=True), ValueError, "seed must be an integer"),
+    ("max_depth a bool", _render(max_depth=True), ValueError, "max_depth must be an integer"),
+    ("threads a bool", _render(threads=True), ValueError, "threads must be an integer"),
     ("seed NaN", _render(seed=np.nan), ValueError, "seed must be an integer"),
     ("seed >= 2**64", _render(seed=1 << 64), ValueError, "seed must be an integer <="),  # fixed
     ("threads 0", _render(threads=0), ValueError, "threads must be"),
@@ -434,6 +446,7 @@ SOLVE = [
     ("max_iter 0", _solve("jacobi", max_iter=0), ValueError, "max_iter must be"),
     ("max_iter 0 direct", _solve("direct", max_iter=0), ValueError, "max_iter must be"),  # fixed
     ("max_iter fractional", _solve("jacobi", max_iter=2.5), ValueError, "max_iter must be"),
+    ("max_iter a bool", _solve("jacobi", max_iter=True), ValueError, "max_iter must be"),
     (
         "hierarchical max_iter 0",
         _solve("hierarchical", max_iter=0),
@@ -551,3 +564,58 @@ def test_mlt_reaches_every_core_option_render_does_not_set(method: str) -> None:
     assert refused == own, refused ^ own
     with pytest.raises(TypeError, match="unknown option 'chainz'"):
         _render(method, max_depth=3, mlt={**small, "chainz": 4})()
+
+
+N = np.int64
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        pytest.param(_camera(resolution=(N(8), np.int32(8)), fov=np.float32(40)), id="camera"),
+        pytest.param(
+            _render(
+                spp=N(2),
+                max_depth=N(3),
+                rr_depth=np.int32(2),
+                seed=np.uint64(5),
+                threads=N(1),
+                time_limit=np.float64(30),
+            ),
+            id="render",
+        ),
+        pytest.param(
+            _render(
+                "pssmlt",
+                max_depth=N(3),
+                mutations_per_pixel=N(1),
+                mlt={"chains": N(4), "bootstrap": N(64), "sigma": np.float32(0.02)},
+            ),
+            id="pssmlt",
+        ),
+        pytest.param(
+            _solve(
+                "jacobi",
+                tol=np.float32(1e-3),
+                max_iter=N(50),
+                seed=N(1),
+                threads=N(1),
+                quadrature=N(3),
+                shadow_rays=N(2),
+                max_edge=np.float64(0.5),
+            ),
+            id="solve",
+        ),
+        pytest.param(
+            _solve("hierarchical", max_iter=N(2), epsilon=np.float32(0.05), max_links=N(10**5)),
+            id="hierarchical",
+        ),
+    ],
+)
+def test_numpy_numbers_are_numbers(call) -> None:
+    """numpy integers (not bools) are accepted wherever ints are, numpy floats wherever
+    floats are; what a render records of them is a plain Python number."""
+    result = call()
+    if isinstance(result, dualight.Image):
+        stats = result.stats
+        assert all(type(stats[k]) is int for k in ("spp", "max_depth", "rr_depth", "seed"))

@@ -60,3 +60,43 @@ def test_bad_files_raise_clear_errors(image, tmp_path) -> None:
         image.save(tmp_path / "a.unknownformat")
     with pytest.raises(ValueError, match="H x W x 3"):
         dualight.Image(np.zeros((4, 4, 2)))
+
+
+def test_arithmetic_and_indexing_as_numpy_arrays(image) -> None:
+    pixels = image.pixels.copy()
+    other = dualight.Image(pixels[::-1], stats={"method": "light"})
+    for result, expected in [
+        (image - other, pixels - pixels[::-1]),
+        (image * 2, pixels * 2),
+        (2 * image, pixels * 2),
+        (image / other, pixels / pixels[::-1]),
+        (-image, -pixels),
+        (np.ones(3) + image, np.ones(3) + pixels),
+        (image[3:7], pixels[3:7]),
+        (image[..., 1], pixels[..., 1]),
+        (np.sqrt(image), np.sqrt(pixels)),
+        (image > 2, pixels > 2),
+    ]:
+        # plain arrays, not Images: the stats and variance describe the render, not this
+        assert type(result) is np.ndarray
+        np.testing.assert_array_equal(result, expected)
+    assert np.mean(image) == pytest.approx(float(np.mean(pixels)))
+    assert image[2, 5].tolist() == pixels[2, 5].tolist()
+    assert np.shares_memory(image[3:7], image.pixels)  # a view, as numpy's slicing
+    assert (image.dtype, image.ndim) == (np.float32, 3)
+
+
+def test_in_place_arithmetic_keeps_the_image(image) -> None:
+    before = image.pixels.copy()
+    same = image
+    same *= 2
+    assert same is image and image.stats["spp"] == 16
+    np.testing.assert_array_equal(image.pixels, before * 2)
+    assert np.asarray(image) is image.pixels
+
+
+def test_numpy_numbers_in_stats_and_exposure_are_saved(image, tmp_path) -> None:
+    image.stats.update(seed=np.uint64(3), b=np.float32(0.5), per_depth=np.array([1.0, 2.0]))
+    loaded = dualight.Image.load(image.save(tmp_path / "a.exr"))
+    assert (loaded.stats["seed"], loaded.stats["b"], loaded.stats["per_depth"]) == (3, 0.5, [1, 2])
+    dualight.Image.load(image.save(tmp_path / "a.png", exposure=np.float32(-1.0)))

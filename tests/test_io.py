@@ -204,7 +204,9 @@ def test_xml_defaults_and_params(tmp_path: Path) -> None:
     scene = dualight.load_mitsuba_xml(path, params={"r": 2})
     assert scene.meshes[0].emission == (2.0, 1.0, 1.0)
     settings = dualight.read_mitsuba_settings(path)
-    assert settings == {"integrator": "path", "max_depth": 4}
+    assert settings == {"method": "path", "max_depth": 4}
+    raw = dualight.read_mitsuba_settings(path, raw=True)
+    assert raw == {"integrator": "path", "max_depth": 4}
     with pytest.raises(ValueError, match=r"\$q has no <default"):
         _load(tmp_path, LIGHT.replace("1, 2, 3", "$q"))
 
@@ -409,7 +411,8 @@ def test_xml_sensor_fov_axis(tmp_path: Path, axis: str, width: int, height: int,
     np.testing.assert_allclose(cam.origin, [-3, 1, 0], atol=1e-12)
     np.testing.assert_allclose(np.subtract(cam.target, cam.origin), [1, 0, 0], atol=1e-12)
     np.testing.assert_allclose(cam.up, [0, 1, 0], atol=1e-12)
-    assert dualight.read_mitsuba_settings(path) == {"spp": 7}
+    assert dualight.read_mitsuba_settings(path) == {"spp": 7, "sampler": "independent"}
+    assert dualight.read_mitsuba_settings(path, raw=True) == {"spp": 7}
 
 
 def test_xml_film_defaults_and_filter_warning(tmp_path: Path) -> None:
@@ -614,12 +617,20 @@ def test_save_and_load_back(tmp_path: Path) -> None:
     scene = scenes.cornell_box(variant="caustics", resolution=(24, 16))
     path = dualight.save_mitsuba_xml(scene, tmp_path / "cbox.xml", spp=32, max_depth=7)
     assert path == tmp_path / "cbox.xml" and (tmp_path / "cbox_meshes").is_dir()
-    assert dualight.read_mitsuba_settings(path) == {
+    assert dualight.read_mitsuba_settings(path, raw=True) == {
         "integrator": "path",
         "max_depth": 7,
         "rr_depth": 5,
         "hide_emitters": False,
         "spp": 32,
+    }
+    settings = dualight.read_mitsuba_settings(path)  # no warning: hide_emitters as dualight
+    assert settings == {
+        "method": "path",
+        "max_depth": 7,
+        "rr_depth": 5,
+        "spp": 32,
+        "sampler": "independent",
     }
     back = dualight.load_mitsuba_xml(path)
     assert back.camera.resolution == scene.camera.resolution
@@ -681,8 +692,17 @@ def test_mirroring_transforms_keep_mitsubas_sides(
       <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>"""
     path = _xml(tmp_path, body)
     lit = float(np.array(mi.render(mi.load_file(str(path)), spp=4)).max()) > 0.5
-    image = dualight.render(dualight.load_mitsuba_xml(path), spp=4, max_depth=1, progress=False)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always", UserWarning)
+        scene = dualight.load_mitsuba_xml(path)
+        image = dualight.render(scene, spp=4, max_depth=1, progress=False)
     assert lit == (float(np.asarray(image).max()) > 0.5)
+    # a lone flat emitter turned away from the camera faces nothing, and render says so (a
+    # sphere turned inside out faces its own inside: not seen, but not facing nothing)
+    warned = any("faces nothing" in str(w.message) for w in record)
+    assert not (warned and lit)
+    if shape in ("rectangle", "ply"):
+        assert warned == (not lit)
 
 
 @pytest.mark.mitsuba
@@ -753,3 +773,40 @@ def test_round_trip_negative_control_fails(room: dict[str, Any]) -> None:
     print(f"\nroom.xml with the light x0.95 vs Mitsuba:\n  {pixel}\n  {blocks}")
     assert blocks.pass_fraction < 0.5
     assert pixel.pass_fraction < PASS
+
+
+def test_mitsuba_settings_are_render_keywords(tmp_path: Path) -> None:
+    """``render(scene, **read_mitsuba_settings(path))`` works: every key is one of render's
+    keywords (the old result, with ``integrator`` and ``hide_emitters``, was not)."""
+    import inspect
+
+    body = f"""
+  <integrator type="ptracer"><integer name="max_depth" value="3"/>
+    <integer name="rr_depth" value="2"/><boolean name="hide_emitters" value="true"/></integrator>
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="6"/><integer name="height" value="4"/>
+      <rfilter type="box"/></film>
+    <sampler type="sobol"><integer name="sample_count" value="2"/>
+      <integer name="seed" value="9"/></sampler>
+  </sensor>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform></shape>
+  {LIGHT}"""
+    path = _xml(tmp_path, body, sensor=False)
+    with pytest.warns(UserWarning, match=r"no dualight.render keyword for hide_emitters=True"):
+        settings = dualight.read_mitsuba_settings(path)
+    assert settings == {
+        "method": "light",
+        "max_depth": 3,
+        "rr_depth": 2,
+        "spp": 2,
+        "sampler": "sobol",
+        "seed": 9,
+    }
+    assert set(settings) <= set(inspect.signature(dualight.render).parameters)
+    image = dualight.render(dualight.load_mitsuba_xml(path), progress=False, **settings)
+    assert (image.stats["method"], image.stats["seed"], image.stats["spp"]) == ("light", 9, 2)
+    assert dualight.read_mitsuba_settings(path, raw=True)["hide_emitters"] is True
+    other = _xml(tmp_path, '<integrator type="direct"/>' + LIGHT)
+    with pytest.warns(UserWarning, match="integrator 'direct'"):
+        assert dualight.read_mitsuba_settings(other) == {}

@@ -283,3 +283,12 @@ def test_student_t_matches_tabulated_values() -> None:
     assert abs(metrics.student_t_critical(5, 0.05) - 1.959964) > 0.5
     with pytest.raises(ValueError, match="dof"):
         metrics.student_t_p_value(1.0, 0.0)
+
+
+def test_delta_e_without_colour_science_says_how_to_install_it(monkeypatch) -> None:
+    import sys
+
+    monkeypatch.setitem(sys.modules, "colour", None)  # `import colour` raises ImportError
+    img = np.full((4, 4, 3), 0.5)
+    with pytest.raises(ImportError, match="needs colour-science.*pip install colour-science"):
+        metrics.delta_e2000(img, img)

@@ -76,3 +76,35 @@ def test_the_package_is_typed_and_the_stub_covers_the_extension() -> None:
     declared = set(re.findall(r"^(?:class |def )?(\w+)\b", stub, flags=re.MULTILINE))
     exported = {n for n in dir(_core) if not n.startswith("_")}
     assert exported <= declared, f"not in _core.pyi (run make stubs): {sorted(exported - declared)}"
+
+
+def test_choice_types_match_the_runtime_tables() -> None:
+    """One ``Literal`` alias per choice set (``dualight.methods``), equal to the table the
+    code checks names against, and used by the functions that take a choice."""
+    from typing import get_args, get_type_hints
+
+    from dualight import methods, radiosity
+    from dualight.radiosity.hierarchical import Oracle
+    from dualight.radiosity.solution import Mode
+
+    assert get_args(methods.Method) == dualight.METHODS == tuple(methods.ESTIMATORS)
+    assert get_args(methods.Sampler) == tuple(_core.SamplerType.__members__)
+    assert get_args(methods.Heuristic) == tuple(_core.MisHeuristic.__members__)
+    assert get_args(methods.RadiosityMethod) == (*radiosity.SOLVERS, "hierarchical")
+    assert get_args(Oracle) == tuple(_core.RefinementOracle.__members__)
+    hints = get_type_hints(dualight.render)
+    assert (hints["method"], hints["sampler"], hints["heuristic"]) == (
+        methods.Method,
+        methods.Sampler,
+        methods.Heuristic,
+    )
+    hints = get_type_hints(radiosity.solve)
+    assert (hints["method"], hints["oracle"]) == (methods.RadiosityMethod, Oracle)
+    assert get_type_hints(radiosity.Solution.render)["mode"] == Mode
+    # every mode the type names is drawn (or refused for a reason, not as unknown)
+    solution = radiosity.solve(dualight.scenes.furnace(0.5, 1.0, (4, 4)), max_edge=0.5)
+    for mode in get_args(Mode):
+        try:
+            solution.render(mode=mode)
+        except ValueError as err:
+            assert "hierarchical" in str(err), err

@@ -208,3 +208,75 @@ def test_camera_rays_follow_mitsuba_conventions() -> None:
     np.testing.assert_allclose(right_edge, np.array([-1, 0, 1]) / np.sqrt(2), atol=1e-6)
     _, top_edge = cam.generate_ray(100.0, 0.0)
     np.testing.assert_allclose(top_edge, np.array([0, 0.5, 1]) / np.sqrt(1.25), atol=1e-6)
+
+
+def _room_lit_from(light_faces: np.ndarray) -> dualight.Scene:
+    """A floor under a light quad, seen from between them: the light emits down to the floor
+    or, with its faces' order reversed, up into nothing."""
+    cam = dualight.Camera(origin=(0.5, 0.5, 0.5), target=(0.5, 0.0, 0.5), up=(0, 0, 1))
+    scene = dualight.Scene(camera=cam.with_resolution(8, 8))
+    floor = np.array([[-1, 0, -1], [-1, 0, 2], [2, 0, 2], [2, 0, -1]], float)  # normal +y
+    scene.add_mesh(floor, [[0, 1, 2, 3]], name="floor")
+    light = np.array([[0.4, 1, 0.4], [0.6, 1, 0.4], [0.6, 1, 0.6], [0.4, 1, 0.6]], float)
+    scene.add_mesh(light, light_faces, emission=(5, 5, 5), name="light")
+    return scene
+
+
+def test_an_emitter_facing_nothing_warns_naming_it() -> None:
+    down, up = np.array([[0, 1, 2, 3]]), np.array([[3, 2, 1, 0]])
+    lit = _room_lit_from(down)
+    assert lit.emitters_facing_nothing() == []
+    turned = _room_lit_from(up)
+    assert turned.emitters_facing_nothing() == ["light"]
+    with pytest.warns(UserWarning, match="emitter 'light' faces nothing.*reverse its faces"):
+        image = dualight.render(turned, spp=1, progress=False)
+    # the warning is right: its light leaves the box, nothing is lit
+    assert float(np.asarray(image).max()) == 0.0
+    assert float(np.asarray(dualight.render(lit, spp=1, progress=False)).max()) > 0.0
+    # a light the camera sees (given to render) does not warn; turned away from it, it does
+    seen = dualight.Scene()
+    seen.add_mesh(QUAD_V, QUAD_F, emission=(1, 1, 1))
+    front = dualight.Camera(origin=(0.5, 0.5, 2), target=(0.5, 0.5, 0), resolution=(4, 4))
+    back = dualight.Camera(origin=(0.5, 0.5, -2), target=(0.5, 0.5, 0), resolution=(4, 4))
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UserWarning)
+        dualight.render(seen, camera=front, spp=1, progress=False)
+    assert seen.emitters_facing_nothing(back) == ["mesh0"]
+
+
+def _builtin_scenes() -> list:
+    import inspect
+
+    builders = [
+        pytest.param(f, id=name)
+        for name, f in inspect.getmembers(dualight.scenes, inspect.isfunction)
+        if f.__module__ == "dualight.scenes"
+        and not name.startswith("_")
+        and inspect.signature(f).return_annotation == "Scene"
+    ]
+    caustics = pytest.param(
+        lambda: dualight.scenes.cornell_box(variant="caustics"), id="cornell_box_caustics"
+    )
+    return [*builders, caustics]
+
+
+@pytest.mark.parametrize("build", _builtin_scenes())
+def test_no_builtin_scene_has_an_emitter_facing_nothing(build) -> None:
+    scene = build()
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UserWarning)
+        scene.validate_for_rendering()
+    assert scene.emitters_facing_nothing() == []
+
+
+def test_camera_resolution_must_be_a_pair() -> None:
+    with pytest.raises(ValueError, match=r"resolution must be a pair.*got 32.*\(32, 32\)"):
+        dualight.Camera(resolution=32)
+    with pytest.raises(ValueError, match="resolution"):
+        dualight.Camera(resolution=(True, 8))  # a bool is not a pixel count
+    cam = dualight.Camera(resolution=(np.int64(32), np.int32(16)))
+    assert cam.resolution == (32, 16) and type(cam.resolution[0]) is int

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.lib.mixins import NDArrayOperatorsMixin
 
 _LDR_SUFFIXES = {".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".webp"}
 _META_PREFIX = "dualight:"
@@ -26,13 +27,46 @@ def srgb_decode(encoded: np.ndarray) -> np.ndarray:
     return np.where(x <= 0.04045, x / 12.92, np.power((x + 0.055) / 1.055, 2.4))
 
 
-class Image:
+def _json(value: Any) -> Any:
+    """numpy values in the stats as JSON (numbers and lists); anything else is a TypeError."""
+    if isinstance(value, np.generic | np.ndarray):
+        return value.tolist()
+    raise TypeError(f"cannot save a {type(value).__name__} in the image's stats as JSON")
+
+
+class Image(NDArrayOperatorsMixin):
     """An H x W x 3 float32 linear RGB image with render statistics.
 
     ``np.asarray(image)`` returns the pixel array itself (no copy). ``image.variance``, when
     the estimator provides it, holds the variance of each pixel's mean estimate (same shape),
     which the statistical tests in :mod:`dualight.metrics` use.
+
+    An image computes as its pixel array does: ``image1 - image2``, ``image * 2``,
+    ``image[10:20]``, ``image[y, x]``, ``image > 1``, ``np.mean(image)``, ``np.sqrt(image)``
+    and every other numpy function or ufunc. Arithmetic, comparisons and indexing return
+    plain numpy arrays (indexing a view of the pixels, as numpy's basic slicing does), not
+    Images: an Image's ``stats``, ``variance`` and ``strategies`` describe one render, and a
+    difference, a scaled copy or a crop is not that render (the variance of a difference is
+    not either image's, and a crop need not be H x W x 3). Wrap a result in ``Image(...)`` to
+    save or show it. In-place arithmetic (``image *= 2``) changes the pixels and keeps the
+    Image and its stats as they were. As with arrays, ``==`` compares pixel by pixel, so
+    Images are not hashable.
     """
+
+    def __array_ufunc__(self, ufunc: Any, method: str, *inputs: Any, **kwargs: Any) -> Any:
+        # numpy's protocol behind the operators of NDArrayOperatorsMixin: compute on the
+        # pixel arrays and return plain arrays, or the Images given as ``out``.
+        args = [x._pixels if isinstance(x, Image) else x for x in inputs]
+        out = kwargs.get("out")
+        if out is not None:
+            kwargs["out"] = tuple(x._pixels if isinstance(x, Image) else x for x in out)
+        result = getattr(ufunc, method)(*args, **kwargs)
+        if out is not None and any(isinstance(x, Image) for x in out):
+            return out[0] if len(out) == 1 else tuple(out)
+        return result
+
+    def __getitem__(self, key: Any) -> Any:
+        return self._pixels[key]
 
     def __init__(
         self,
@@ -79,6 +113,16 @@ class Image:
         return self._pixels.shape  # type: ignore[return-value]
 
     @property
+    def dtype(self) -> np.dtype:
+        """``float32``, the pixels' type."""
+        return self._pixels.dtype
+
+    @property
+    def ndim(self) -> int:
+        """3, as the pixel array's."""
+        return self._pixels.ndim
+
+    @property
     def width(self) -> int:
         """Width in pixels."""
         return self._pixels.shape[1]
@@ -109,9 +153,9 @@ class Image:
             raise FileNotFoundError(f"directory does not exist: {path.parent}")
         from dualight import _core
 
-        metadata = {_META_PREFIX + k: json.dumps(v) for k, v in self.stats.items()}
+        metadata = {_META_PREFIX + k: json.dumps(v, default=_json) for k, v in self.stats.items()}
         if path.suffix.lower() in _LDR_SUFFIXES:
-            metadata[_META_PREFIX + "exposure"] = json.dumps(exposure)
+            metadata[_META_PREFIX + "exposure"] = json.dumps(exposure, default=_json)
             data = self.tonemap(exposure).astype(np.float32) / 255.0
         else:
             data = self._pixels

@@ -11,9 +11,22 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 from dualight import _core
+
+# The choice sets of the public functions, as types, so a type checker catches a misspelled
+# name. Each is defined once, here, and kept equal to its runtime table by the tests
+# (test_public_api.py): Method to METHODS, Sampler and Heuristic to the core's enums,
+# RadiosityMethod to dualight.radiosity.SOLVERS plus "hierarchical".
+Method = Literal["path", "light", "bdpt", "pssmlt", "mmlt", "mlt"]
+"""A method of :func:`dualight.render` (the names of :data:`METHODS`)."""
+Sampler = Literal["independent", "sobol"]
+"""``render(sampler=...)``: the core's ``SamplerType`` names."""
+Heuristic = Literal["power", "balance"]
+"""``render(heuristic=...)``: BDPT's MIS heuristic, the core's ``MisHeuristic`` names."""
+RadiosityMethod = Literal["direct", "jacobi", "gauss_seidel", "southwell", "hierarchical"]
+"""A method of :func:`dualight.radiosity.solve`."""
 
 
 @dataclass(frozen=True)

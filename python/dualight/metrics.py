@@ -17,6 +17,7 @@ import math
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -357,6 +358,22 @@ def _tested_units(mask: ArrayLike | None, shape: tuple[int, int], block: int) ->
     return m[: hb * block, : wb * block].reshape(hb, block, wb, block).all(axis=(1, 3))
 
 
+def _colour_science(needed_by: str) -> tuple[Any, type[Warning]]:
+    """The ``colour`` package and its ``ColourWarning``, or an ImportError saying how to get
+    it (colour-science is an optional dependency)."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # import-time notices, e.g. about SciPy being absent
+            import colour
+            from colour.utilities import ColourWarning
+    except ImportError as exc:
+        raise ImportError(
+            f"dualight.metrics.{needed_by} needs colour-science, which is not installed: "
+            'pip install colour-science (or pip install "dualight[bench]")'
+        ) from exc
+    return colour, ColourWarning
+
+
 def delta_e2000(
     image: ArrayLike,
     reference: ArrayLike,
@@ -391,6 +408,11 @@ def delta_e2000(
     -------
     dict
         ``{"mean": ..., "p95": ..., "max": ...}`` of the per-pixel Delta E 2000.
+
+    Raises
+    ------
+    ImportError
+        Without colour-science (an optional dependency), saying how to install it.
     """
     x, y = _pair(image, reference)
     keep = _pixel_mask(mask, x.shape[:2])
@@ -402,11 +424,7 @@ def delta_e2000(
     else:
         k = float(exposure)
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # import-time notices, e.g. about SciPy being absent
-        import colour
-        from colour.utilities import ColourWarning
-
+    colour, ColourWarning = _colour_science("delta_e2000")  # noqa: N806 - a class
     space = colour.RGB_COLOURSPACES["sRGB"]
     with warnings.catch_warnings(), colour.domain_range_scale("reference"):
         warnings.simplefilter("ignore", ColourWarning)

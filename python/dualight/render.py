@@ -7,10 +7,12 @@ import os
 from collections.abc import Callable, Mapping
 from typing import Any
 
+import numpy as np
+
 from dualight import _core
 from dualight.executor import as_executor, render_chain_split, render_split
 from dualight.image import Image
-from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator
+from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator, Heuristic, Method, Sampler
 from dualight.scene import Camera, Scene
 
 # The core's defaults of the keywords render shares with the options (BDPT's have them all).
@@ -46,10 +48,23 @@ class _TqdmProgress:
 
 
 def _check_int(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+    """``value`` as a Python int: any integer (numpy's too) but a bool, ``>= minimum``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     if maximum is not None and value > maximum:
         raise ValueError(f"{name} must be an integer <= {maximum}, got {value!r}")
+    return int(value)
+
+
+def _plain(value: Any) -> Any:
+    """A numpy integer or float as the Python number (for the core's options and the stats,
+    which are saved as JSON); anything else unchanged, for the core to check and name."""
+    if isinstance(value, bool | np.bool_):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
     return value
 
 
@@ -147,7 +162,7 @@ def _image(result: Mapping[str, Any], stats: dict[str, Any], strategy_images: bo
 
 def render(
     scene: Scene,
-    method: str = "path",
+    method: Method = "path",
     *,
     spp: int | None = _DEFAULT.spp,
     time_limit: float | None = None,
@@ -157,8 +172,8 @@ def render(
     threads: int | None = None,
     progress: bool | ProgressCallback = True,
     camera: Camera | None = None,
-    sampler: str = _DEFAULT.sampler.name,
-    heuristic: str = _DEFAULT.heuristic.name,
+    sampler: Sampler = _DEFAULT.sampler.name,  # type: ignore[assignment]
+    heuristic: Heuristic = _DEFAULT.heuristic.name,  # type: ignore[assignment]
     strategy_images: bool = _DEFAULT.strategy_images,
     mutations_per_pixel: int | None = None,
     mlt: Mapping[str, Any] | None = None,
@@ -166,6 +181,11 @@ def render(
     executor: Any = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
+
+    Numbers may be Python's or numpy's (``spp=np.int64(64)``, ``time_limit=np.float32(2)``);
+    a bool is not taken for an integer. ``method``, ``sampler`` and ``heuristic`` are typed
+    with the :mod:`dualight.methods` aliases (``Method``, ...), so a type checker catches a
+    misspelled name; at run time a wrong one is a ``ValueError`` listing the valid ones.
 
     Parameters
     ----------
@@ -288,6 +308,9 @@ def render(
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
     estimator = ESTIMATORS[method]
     spp, threads = _budget(estimator, spp, time_limit, threads, mutations_per_pixel)
+    max_depth, rr_depth, seed, time_limit = (
+        _plain(v) for v in (max_depth, rr_depth, seed, time_limit)
+    )
     if mlt is not None and not estimator.metropolis:
         raise ValueError(f"mlt options apply to the MLT methods only ({', '.join(METROPOLIS)})")
     if mlt is not None and not isinstance(mlt, Mapping):

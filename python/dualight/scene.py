@@ -17,6 +17,7 @@ Conventions (the same as Mitsuba 3):
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from collections.abc import Sequence
@@ -45,6 +46,24 @@ def _vec3(value: Any, name: str) -> Vec3:
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {arr.tolist()}")
     return (float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+def _resolution(value: Any) -> tuple[int, ...]:
+    """A camera's ``(width, height)``: two positive integers (numpy's too, not bools)."""
+    if isinstance(value, str | bytes) or not isinstance(value, Sequence | np.ndarray):
+        hint = ""
+        if isinstance(value, int | np.integer) and not isinstance(value, bool):
+            hint = f"; for a square image pass resolution=({value}, {value})"
+        raise ValueError(
+            f"camera resolution must be a pair (width, height) of positive ints, got "
+            f"{value!r}{hint}"
+        )
+    res = tuple(value)
+    if len(res) != 2 or not all(
+        isinstance(v, int | np.integer) and not isinstance(v, bool) and v >= 1 for v in res
+    ):
+        raise ValueError(f"camera resolution must be (width, height) positive ints, got {res}")
+    return res
 
 
 @dataclass(frozen=True)
@@ -82,9 +101,7 @@ class Camera:
         if not (math.isfinite(fov) and 0.0 < fov < 180.0):
             raise ValueError(f"camera fov must be in (0, 180) degrees, got {self.fov}")
         object.__setattr__(self, "fov", fov)
-        res = tuple(self.resolution)
-        if len(res) != 2 or not all(isinstance(v, int | np.integer) and v >= 1 for v in res):
-            raise ValueError(f"camera resolution must be (width, height) positive ints, got {res}")
+        res = _resolution(self.resolution)
         if res[0] * res[1] > 1 << 28:
             raise ValueError(f"camera resolution {res} is too large")
         object.__setattr__(self, "resolution", (int(res[0]), int(res[1])))
@@ -197,6 +214,29 @@ def _colour(value: Any, name: str, *, upper: float | None) -> Vec3:
     return rgb
 
 
+def _faces_something(
+    mesh: Mesh, points: np.ndarray, lo: np.ndarray, hi: np.ndarray, tolerance: float
+) -> bool:
+    """Whether some point lies in front of the plane of some triangle of ``mesh`` (by more
+    than ``tolerance``). Triangles are grouped by their unit normal, so a flat light costs
+    one pass over the points; the bounding box ``lo, hi`` answers first when it can."""
+    tri = mesh.vertices[mesh.triangles]
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    normals, group = np.unique(np.round(n, 6), axis=0, return_inverse=True)
+    group = group.reshape(-1)
+    # Per group, the lowest plane offset of its triangles: the most permissive plane.
+    offset = np.full(len(normals), np.inf)
+    np.minimum.at(offset, group, np.einsum("ij,ij->i", normals[group], tri[:, 0]))
+    corners = np.array(list(itertools.product(*zip(lo, hi, strict=True))))
+    maybe = (normals @ corners.T).max(axis=1) > offset + tolerance
+    for start in range(0, len(normals), 64):  # bounded memory: 64 planes x V at a time
+        rows = np.flatnonzero(maybe[start : start + 64]) + start
+        if len(rows) and np.any((normals[rows] @ points.T).max(axis=1) > offset[rows] + tolerance):
+            return True
+    return False
+
+
 class Scene:
     """A camera and triangle meshes with materials, some of them emitters.
 
@@ -215,6 +255,8 @@ class Scene:
         self._camera = camera
         self._meshes: list[Mesh] = []
         self._compiled: _core.Scene | None = None
+        # Camera origins (None: no camera) the emitters were checked against (render time).
+        self._checked_facing: set[Vec3 | None] = set()
 
     def __getstate__(self) -> dict[str, Any]:
         # Picklable (render(executor=...) sends the description to workers): the compiled
@@ -224,7 +266,7 @@ class Scene:
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
-        self.__dict__.update(state)
+        self.__dict__.update({"_checked_facing": set(), **state})
         for mesh in self._meshes:
             for value in vars(mesh).values():
                 if isinstance(value, np.ndarray):
@@ -391,6 +433,7 @@ class Scene:
             arr.flags.writeable = False
         self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material))
         self._compiled = None
+        self._checked_facing = set()
         return len(self._meshes) - 1
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -402,7 +445,9 @@ class Scene:
         return lo, hi
 
     def validate_for_rendering(self, camera: Camera | None = None) -> None:
-        """Raise ``ValueError`` if the scene cannot be rendered (empty, no emitter, no camera).
+        """Raise ``ValueError`` if the scene cannot be rendered (empty, no emitter, no camera);
+        warn (``UserWarning``) of an emitter that faces nothing (see
+        :meth:`emitters_facing_nothing`), once per scene and camera.
 
         ``camera`` stands in for a missing ``scene.camera``.
         """
@@ -412,6 +457,44 @@ class Scene:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         if self._camera is None and camera is None:
             raise ValueError("scene has no camera: pass camera=dualight.Camera(...)")
+        self._warn_emitters_facing_nothing(camera or self._camera)
+
+    def emitters_facing_nothing(self, camera: Camera | None = None) -> list[str]:
+        """The names of the emitting meshes whose emitting (front) side faces nothing: every
+        vertex of the scene and the camera's origin lie on or behind the plane of each of
+        their triangles (to 1e-5 of the scene's size), so their light leaves the scene
+        unseen and unreflected (most often a light whose vertex order, and so its normal, is
+        the wrong way round, facing out of a closed room). ``camera`` defaults to the scene's.
+        :func:`dualight.render` warns of each with a ``UserWarning`` naming it."""
+        if not self._meshes:
+            return []
+        points = np.concatenate([m.vertices for m in self._meshes])
+        lo, hi = points.min(axis=0), points.max(axis=0)
+        cam = camera or self._camera
+        if cam is not None:  # a light the camera sees directly is not lost
+            points = np.vstack([points, cam.origin])
+            lo, hi = np.minimum(lo, cam.origin), np.maximum(hi, cam.origin)
+        tolerance = 1e-5 * max(float(np.max(hi - lo)), 1e-30)
+        return [
+            m.name
+            for m in self._meshes
+            if m.is_emitter and not _faces_something(m, points, lo, hi, tolerance)
+        ]
+
+    def _warn_emitters_facing_nothing(self, camera: Camera | None) -> None:
+        """Warn of each emitter facing nothing, once per description and camera origin."""
+        key = None if camera is None else camera.origin
+        if key in self._checked_facing:
+            return
+        self._checked_facing.add(key)
+        for name in self.emitters_facing_nothing(camera):
+            warnings.warn(
+                f"emitter {name!r} faces nothing: every vertex of the scene and the camera are "
+                "behind its emitting side (the right-hand-rule normal (v1 - v0) x (v2 - v0)), "
+                "so its light leaves the scene; reverse its faces' vertex order to turn it round",
+                UserWarning,
+                stacklevel=4,
+            )
 
     def _compile(self) -> _core.Scene:
         """The immutable compiled scene (cached until the description changes)."""

@@ -636,6 +636,10 @@ def _sensor(ctx: _Context, element: ET.Element, settings: dict[str, Any]) -> Cam
             )
             if "sample_count" in sprops:
                 settings["spp"] = _integer(ctx, sprops["sample_count"], 4)
+            # For render's keywords only (read_mitsuba_settings(raw=True) leaves them out).
+            settings["_sampler"] = ctx.attr(child, "type")
+            if "seed" in sprops:
+                settings["_seed"] = _integer(ctx, sprops["seed"], 0)
         elif child.tag not in (*_PROPERTY_TAGS, "transform"):
             raise ctx.error(child, f"<{child.tag}> inside a sensor is not supported")
     if rfilter != "box":
@@ -823,13 +827,62 @@ def load_mitsuba_xml(
     return scene
 
 
+# Mitsuba integrators and samplers and the dualight method or sampler that computes the same
+# image (bdpt, pssmlt and mlt are Mitsuba 0.6's names).
+_INTEGRATORS = {
+    "path": "path",
+    "ptracer": "light",
+    "bdpt": "bdpt",
+    "pssmlt": "pssmlt",
+    "mlt": "mlt",
+}
+_SAMPLERS = ("independent", "sobol")
+# Integrator properties dualight does as Mitsuba does with these values: left out silently.
+_SAME_AS_MITSUBA = {"hide_emitters": False}
+
+
+def _render_keywords(path: PathLike, settings: Mapping[str, Any]) -> dict[str, Any]:
+    """The keywords of :func:`dualight.render` that the file's settings amount to; what has
+    no keyword is left out, with a ``UserWarning`` unless dualight does it anyway."""
+    out: dict[str, Any] = {}
+    dropped = []
+    for key, value in settings.items():
+        if key == "integrator":
+            if value in _INTEGRATORS:
+                out["method"] = _INTEGRATORS[value]
+            else:
+                dropped.append(f"integrator {value!r}")
+        elif key in ("spp", "max_depth", "rr_depth"):
+            out[key] = value
+        elif key == "_seed":
+            out["seed"] = value
+        elif key == "_sampler":
+            if value in _SAMPLERS:
+                out["sampler"] = value
+            else:
+                dropped.append(f"sampler {value!r}")
+        elif key not in _SAME_AS_MITSUBA or _SAME_AS_MITSUBA[key] != value:
+            dropped.append(f"{key}={value!r}")
+    if dropped:
+        warnings.warn(
+            f"{str(path)!r}: no dualight.render keyword for {', '.join(dropped)}; left out "
+            "(read_mitsuba_settings(..., raw=True) returns the file's settings as given)",
+            UserWarning,
+            stacklevel=3,
+        )
+    return out
+
+
 def read_mitsuba_settings(
     path: PathLike,
     *,
     params: Mapping[str, Any] | None = None,
     keys: tuple[str, ...] | None = None,
+    raw: bool = False,
 ) -> dict[str, Any]:
-    """The render settings a Mitsuba 3 XML file asks for.
+    """The render settings a Mitsuba 3 XML file asks for, as keywords of
+    :func:`dualight.render`, so that ``render(scene, **read_mitsuba_settings(path))`` renders
+    what ``mitsuba.render(mitsuba.load_file(path))`` would.
 
     Parameters
     ----------
@@ -839,15 +892,28 @@ def read_mitsuba_settings(
         As in :func:`load_mitsuba_xml`.
     keys : tuple of str, optional
         Return only these keys (those the file gives).
+    raw : bool, optional
+        Return the file's settings as given (the integrator's type and properties, the
+        sampler's ``sample_count`` as ``spp``), not render's keywords.
 
     Returns
     -------
     dict
-        ``integrator`` (its type, e.g. ``"path"``), the integrator's properties as given
-        (``max_depth``, ``rr_depth``, ``hide_emitters``, ...) and ``spp`` (the sampler's
-        ``sample_count``), for those the file has.
+        Of those the file gives: ``method`` (from the integrator's type: ``path`` is
+        ``"path"``, ``ptracer`` is ``"light"``; Mitsuba 0.6's ``bdpt``, ``pssmlt`` and
+        ``mlt`` keep their names), ``spp`` (the sampler's ``sample_count``), ``max_depth``
+        and ``rr_depth`` (the integrator's), ``seed`` (the sampler's) and ``sampler``
+        (``independent`` or ``sobol``). Settings without a render keyword (another
+        integrator or sampler, ``hide_emitters=True``, ...) are left out with a
+        ``UserWarning``; those dualight does anyway (``hide_emitters=False``) silently.
+        With ``raw=True``: ``integrator`` (its type), the integrator's properties as given
+        and ``spp``.
     """
     _, settings = _parse(path, params, False, 0)
+    if raw:
+        settings = {k: v for k, v in settings.items() if not k.startswith("_")}
+    else:
+        settings = _render_keywords(path, settings)
     if keys is not None:
         settings = {k: v for k, v in settings.items() if k in keys}
     return settings

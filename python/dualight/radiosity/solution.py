@@ -5,16 +5,18 @@ defines. :func:`dualight.radiosity.solve` and the hierarchical solver both retur
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 import numpy as np
 
 from dualight import _core
 from dualight.image import Image
+from dualight.methods import RadiosityMethod
 from dualight.radiosity.patches import PatchMesh
 from dualight.scene import Camera
 
 Mode = Literal["radiosity", "importance", "superposition", "elements", "links"]
+"""``Solution.render(mode=...)``: the pictures of a solution."""
 
 
 def camera_samples(
@@ -98,7 +100,7 @@ class Solution:
     R: np.ndarray
     form_factors: _core.FormFactors | None  # None for hierarchical solutions (links instead)
     camera: Camera
-    method: str
+    method: RadiosityMethod
     stats: dict[str, Any] = field(default_factory=dict)
     history: dict[str, list[Any]] = field(default_factory=dict)
     link_density: np.ndarray | None = None  # hierarchical: links per unit area at each patch
@@ -254,4 +256,4 @@ class Solution:
             yellow = np.array([1.0, 0.85, 0.0])
             out = (1 - t) * grey * 0.7 + t * yellow * (0.4 + 0.6 * grey)
             return Image(out, stats={"mode": mode, "method": self.method})
-        raise ValueError(f"mode must be 'radiosity', 'importance' or 'superposition', got {mode!r}")
+        raise ValueError(f"mode must be one of {', '.join(get_args(Mode))}, got {mode!r}")

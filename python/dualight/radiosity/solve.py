@@ -12,7 +12,8 @@ from typing import Any
 import numpy as np
 
 from dualight import _core
-from dualight.radiosity.hierarchical import HierarchicalSolver
+from dualight.methods import RadiosityMethod
+from dualight.radiosity.hierarchical import HierarchicalSolver, Oracle
 from dualight.radiosity.patches import PatchMesh
 from dualight.radiosity.solution import Solution, receiver
 from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
@@ -108,7 +109,7 @@ def _check_solve_arguments(
 
 def solve(
     scene: Scene,
-    method: str = "direct",
+    method: RadiosityMethod = "direct",
     *,
     max_edge: float | None = None,
     max_area: float | None = None,
@@ -124,7 +125,7 @@ def solve(
     progress: bool | Callable[[int, int], None] = False,
     patches: PatchMesh | None = None,
     precomputed: tuple[_core.FormFactors, dict[str, Any]] | None = None,
-    oracle: str = _HIERARCHICAL.oracle.name,
+    oracle: Oracle = _HIERARCHICAL.oracle.name,  # type: ignore[assignment]
     epsilon: float = _HIERARCHICAL.epsilon,
     min_area: float | None = None,
     max_links: int = _HIERARCHICAL.max_links,
@@ -186,7 +187,7 @@ def solve(
             scene,
             camera=camera,
             window=window,
-            oracle=oracle,  # type: ignore[arg-type]
+            oracle=oracle,
             epsilon=epsilon,
             min_area=min_area,
             shadow_rays=shadow_rays,
