@@ -60,6 +60,12 @@ def test_every_option_has_help_showing_its_default(capsys: pytest.CaptureFixture
             assert "default" in text, f"render {name}: {text!r}"
     assert "default: 64" in render["--spp SPP"]
     assert "(default: out.exr)" in render["-o OUTPUT, --output OUTPUT"]
+    demo = _entries(_help(capsys, "demo"))
+    assert len(demo) >= 8, demo
+    for name, text in demo.items():
+        if name != "-h, --help":
+            assert "default" in text, f"demo {name}: {text!r}"
+    assert "default: 256x256" in demo["--resolution RESOLUTION"]
 
 
 @pytest.mark.parametrize("how", ["positional", "--scene"])

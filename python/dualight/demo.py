@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from dualight import metrics, scenes
-from dualight._cli import resolution
+from dualight._cli import add_subcommand, resolution
 from dualight._page import Figure, Section, markdown, write_html
 from dualight.image import Image, srgb_decode
 from dualight.render import render
@@ -495,31 +495,30 @@ def run(args: argparse.Namespace) -> int:
 
 def add_parser(sub: Any) -> None:
     """Add the ``demo`` subcommand to the ``python -m dualight`` argument parser."""
-    d = sub.add_parser(
-        "demo",
-        help="the whole idea on one page: out/index.html (about 3 minutes on 2 cores)",
+    d = add_subcommand(
+        sub, "demo", "the whole idea on one page: out/index.html (about 2 minutes on 2 cores)"
     )
-    d.add_argument("--out", default="out", help="output folder (default out)")
-    d.add_argument("--seed", type=int, default=0, help="seed of every render and solve (default 0)")
+    d.add_argument("--out", default="out", help="output folder")
+    d.add_argument("--seed", type=int, default=0, help="seed of every render and solve")
     d.add_argument("--threads", type=int, default=None, help="threads (default: all cores)")
     d.add_argument(
         "--spp",
         type=int,
         default=None,
-        help=f"the Cornell box's samples per pixel (default {FULL.cornell_spp})",
+        help=f"the Cornell box's samples per pixel (default: {FULL.cornell_spp})",
     )
     d.add_argument(
         "--resolution",
         type=resolution,
         default=None,
-        help="the Cornell box's WxH (default {}x{})".format(*FULL.cornell_resolution),
+        help="the Cornell box's WxH (default: {}x{})".format(*FULL.cornell_resolution),
     )
     d.add_argument(
         "--duality-seconds",
         type=float,
         default=None,
-        help=f"path and light tracing, each (default {FULL.duality_seconds:g})",
+        help=f"path and light tracing, each (default: {FULL.duality_seconds:g})",
     )
-    d.add_argument("--quick", action="store_true", help="tiny sizes and budgets (seconds)")
+    d.add_argument("--quick", action="store_true", help="tiny sizes and budgets, seconds in all")
     d.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     d.set_defaults(run=run)
