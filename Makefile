@@ -16,7 +16,8 @@ $(VENV)/.setup-done: scripts/setup.sh
 install: $(VENV)/.installed
 $(VENV)/.installed: $(VENV)/.setup-done $(SOURCES)
 	$(PY) -m pip install -q --disable-pip-version-check --no-build-isolation \
-	  -C build-dir=build/{wheel_tag} -C cmake.define.DUALIGHT_TESTING=ON .
+	  --config-settings=build-dir=build/{wheel_tag} \
+	  --config-settings=cmake.define.DUALIGHT_TESTING=ON .
 	touch $@
 
 demo: install

@@ -4,9 +4,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# libllvm19: Mitsuba 3.9's llvm_ad_rgb variant (a reference renderer in tests and benchmarks) needs LLVM >= 16.
-PACKAGES=(g++ make cmake pkg-config python3-venv python3-dev
-          libembree-dev libtbb-dev libeigen3-dev libopenimageio-dev libllvm19 doctest-dev)
+# What `pip install .` needs to build the package (the README's "Installing with pip" names
+# these, and CMakeLists.txt names each one it misses).
+BUILD_PACKAGES=(g++ make cmake pkg-config python3-venv python3-dev
+                libembree-dev libtbb-dev libeigen3-dev libopenimageio-dev)
+# What only the tests and benchmarks need: doctest for tests/cpp; libllvm19 for Mitsuba 3.9's
+# llvm_ad_rgb variant (a reference renderer in tests and benchmarks), which needs LLVM >= 16.
+TEST_PACKAGES=(libllvm19 doctest-dev)
+PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}")
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
