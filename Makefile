@@ -10,11 +10,14 @@ $(VENV)/.setup-done: scripts/setup.sh
 	bash scripts/setup.sh
 	touch $@
 
-# Rebuilds only when a source changed; build/ keeps CMake's incremental state. With the test
-# hooks module dualight._testing (tests/hooks), which a plain `pip install .` leaves out.
+# Rebuilds only when a source changed; build/<wheel tag> keeps CMake's incremental state (a plain
+# `pip install .` builds in a temporary folder instead). With the test hooks module
+# dualight._testing (tests/hooks), which a plain `pip install .` leaves out.
 install: $(VENV)/.installed
 $(VENV)/.installed: $(VENV)/.setup-done $(SOURCES)
-	DUALIGHT_TESTING=ON $(PY) -m pip install -q --disable-pip-version-check --no-build-isolation .
+	$(PY) -m pip install -q --disable-pip-version-check --no-build-isolation \
+	  --config-settings=build-dir=build/{wheel_tag} \
+	  --config-settings=cmake.define.DUALIGHT_TESTING=ON .
 	touch $@
 
 demo: install
