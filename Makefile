@@ -26,7 +26,7 @@ demo: install
 # pytest runs last: its summary is the closing line CI reads.
 test: install cpp-test
 	$(VENV)/bin/ruff check python tests benchmarks notebooks
-	$(PY) -m pytest -q --nbmake
+	$(PY) -m pytest -q
 
 # C++ unit tests (tests/cpp) through ctest, in their own incremental build folder.
 cpp-test: setup

@@ -3,11 +3,12 @@ on the Cornell box, its caustic variant and Veach's door scene.
 
 Each estimator renders every scene for a series of time budgets (dualight: ``time_limit``;
 Mitsuba: a series of spp, timed). Error is relMSE (pbrt-v4's definition) against the stored
-Mitsuba references of the tests (``tests/references/<scene>_64``, 64x64, ``max_depth`` 8). Those
-references are noisy themselves: the expected relMSE against a noisy reference is the true
-relMSE plus the reference's own term ``mean(var_ref / (ref + eps)^2)``, which is estimated from
-the reference's variance image and subtracted (``relmse`` is corrected, ``relmse_raw`` is not).
-Monte Carlo error falls as 1/time, so ``1 / (relMSE * seconds)`` is an estimator's efficiency;
+Mitsuba references of the tests (``dualight/data/references/<scene>_64``, 64x64,
+``max_depth`` 8). Those references are noisy themselves: the expected relMSE against a noisy
+reference is the true relMSE plus the reference's own term ``mean(var_ref / (ref + eps)^2)``,
+which is estimated from the reference's variance image and subtracted (``relmse`` is corrected,
+``relmse_raw`` is not). Monte Carlo error falls as 1/time, so ``1 / (relMSE * seconds)`` is an
+estimator's efficiency;
 the ratio of two efficiencies is the ratio of their times to equal error. Ratios use the longest
 budget. The light tracer cannot render pixels that see a mirror or glass directly, so its error
 is also reported on the pixels it can render (``relmse_lt_pixels``, for every estimator).
@@ -36,11 +37,12 @@ import numpy as np
 import dualight
 from dualight import metrics, scenes
 from dualight import mitsuba as dmi
+from dualight.bench import REFERENCE_DIR
 from dualight.plotting import curves_by, save_relmse_against_time
 
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
-REFERENCES = HERE.parent / "tests" / "references"
+REFERENCES = REFERENCE_DIR  # shipped with the package
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests")]
 from bench_path import time_mitsuba  # noqa: E402
 from test_pathspace_vs_mitsuba import renderable_by_light_tracing  # noqa: E402

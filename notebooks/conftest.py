@@ -1,5 +1,6 @@
-"""pytest --nbmake runs every notebook here top to bottom at a tiny budget (the kernels inherit
-this process's environment)."""
+"""``make test`` runs the notebooks through tests/test_notebooks.py (each in a kernel, at the
+tiny budget, every figure checked). For ``pytest --nbmake notebooks`` by hand the same budget
+applies (the kernels inherit this process's environment)."""
 
 import os
 

@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 import dualight
 from dualight import scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 from dualight.radiosity import HierarchicalSolver, solve
-
-REFERENCES = Path(__file__).parent / "references"
 
 
 def _view_error(solution, reference: np.ndarray) -> float:

@@ -3,9 +3,9 @@
 * The scene conversion: the dict loads, has the agreed conventions (box filter, fov along x,
   two-sided diffuse BSDFs, one one-sided area emitter per emitting mesh), and the image and
   face orientations match dualight's (checked by rendering).
-* The stored references in ``tests/references`` (``make_references.py``): a fresh Mitsuba render
-  with another seed agrees with them under ``metrics.welch_test``, and the same render of a
-  Cornell box whose light is 2 % dimmer does not (negative control).
+* The stored references in ``dualight/data/references`` (``make_references.py``): a fresh
+  Mitsuba render with another seed agrees with them under ``metrics.welch_test``, and the
+  same render of a Cornell box whose light is 2 % dimmer does not (negative control).
 * The furnace reference: with paths of at most ``k`` segments (``max_depth = k``) the radiance
   is ``sum_{i<k} rho^i Le = Le (1 - rho^k) / (1 - rho)`` everywhere; ``furnace_64`` has
   ``rho = 0.5``, ``Le = 1``, ``k = 16``.
@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import subprocess
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,9 +22,9 @@ import pytest
 
 import dualight
 from dualight import metrics, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 from dualight.scene import Camera, Scene
 
-REFERENCES = Path(__file__).resolve().parent / "references"
 CORNELL = {"max_depth": 8, "rr_depth": 5}  # the settings of references/cornell_64_*.exr
 LIVE_SPP = 4096  # about 7 s per 64 x 64 Cornell render with llvm_ad_rgb on 2 cores
 LIVE_SEED = 20240607  # any seed but the reference's (0)

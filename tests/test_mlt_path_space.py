@@ -4,15 +4,13 @@ Mitsuba reference is tested with the other MLT methods in test_pssmlt.py."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 import dualight
 from dualight import _core, _testing, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 
-REFERENCES = Path(__file__).parent / "references"
 SCENES = {
     "cornell": lambda: scenes.cornell_box(resolution=(32, 32)),
     "caustics": lambda: scenes.cornell_box(resolution=(32, 32), variant="caustics"),

@@ -1,18 +1,16 @@
-"""The path tracer against stored Mitsuba 3 references (tests/references, made by
+"""The path tracer against stored Mitsuba 3 references (dualight/data/references, made by
 make_references.py): per-pixel and per-block Welch tests with both images' variances, and
 Delta E 2000, each with negative controls that must fail the same comparison."""
 
 from __future__ import annotations
-
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import dualight
 from dualight import metrics, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 
-REFERENCES = Path(__file__).parent / "references"
 SPP = 2048
 
 

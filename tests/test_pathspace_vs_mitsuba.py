@@ -1,7 +1,7 @@
 """The path tracer, the light tracer and BDPT against the stored Mitsuba 3 references
-(tests/references): Welch tests with both images' variances and CIE Delta E 2000, each with a
-negative control that must fail the same comparison. (The path tracer's Cornell and furnace
-rows are in test_path_vs_mitsuba.py.)
+(dualight/data/references): Welch tests with both images' variances and CIE Delta E 2000,
+each with a negative control that must fail the same comparison. (The path tracer's Cornell
+and furnace rows are in test_path_vs_mitsuba.py.)
 
 How each render is judged, and why (``Judge``):
 
@@ -25,15 +25,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import dualight
 from dualight import metrics, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 
-REFERENCES = Path(__file__).parent / "references"
 PASS = 0.9975  # the foundation's pass fraction: with 64 blocks, every block must pass
 
 

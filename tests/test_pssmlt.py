@@ -9,15 +9,14 @@ from __future__ import annotations
 
 import functools
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import dualight
 from dualight import metrics, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 
-REFERENCES = Path(__file__).parent / "references"
 RUNS, MPP, BLOCK = 12, 24, 8
 ALPHA = 0.01
 

@@ -1,7 +1,8 @@
 """Radiosity against the stored full-global-illumination Mitsuba 3 reference.
 
-``cornell_64_full`` (tests/references, made by make_references.py) is Mitsuba's path tracer on
-``cornell_box((64, 64))`` with ``max_depth=-1``: every bounce, as radiosity counts them all.
+``cornell_64_full`` (dualight/data/references, made by make_references.py) is Mitsuba's path
+tracer on ``cornell_box((64, 64))`` with ``max_depth=-1``: every bounce, as radiosity counts
+them all.
 
 Radiosity is deterministic apart from the (seeded) form-factor visibility rays, and its error
 is a discretisation error, not Monte Carlo noise, so a Welch test is the wrong tool. The
@@ -21,7 +22,7 @@ control (light x 0.9, reflectance x 0.9) must fail the combined verdict. Discret
 the reflected radiance low (patches that straddle the contact lines of the blocks with the
 floor and of the light with the ceiling average lit with unlit area), by about 0.017 % per mm
 of ``max_edge`` (0.98 at 110 mm, 0.9925 at 45 mm, 0.996 at 25 mm): see
-tests/references/README.md for the convergence table.
+dualight/data/references/README.md for the convergence table.
 """
 
 from __future__ import annotations
@@ -29,16 +30,15 @@ from __future__ import annotations
 import dataclasses
 import time
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import dualight
 from dualight import metrics, scenes
+from dualight.bench import REFERENCE_DIR as REFERENCES
 from dualight.radiosity import PatchMesh, Solution, solve
 
-REFERENCES = Path(__file__).parent / "references"
 REFERENCE = "cornell_64_full"
 #: Longest patch edge (mm): 4352 patches. The coarsest mesh whose reflected-radiance ratio is
 #: within 1 % with some margin (Delta E < 2 already holds from 150 mm, 488 patches, on).

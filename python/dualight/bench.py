@@ -7,10 +7,15 @@ the radiosity solvers (Gauss-Seidel on uniform meshes of three sizes, importance
 hierarchical radiosity at three thresholds) solve the scenes that are all diffuse, their view
 drawn with smooth shading. Each result is compared with the scene's reference:
 
-* the Mitsuba 3 references of the test suite (``tests/references``: mean and variance of the
-  mean), or one rendered by Mitsuba on first use and cached (``--cache``; the rooms); without
-  Mitsuba those scenes are skipped, and said so;
+* the Mitsuba 3 references that the tests use, shipped with the package
+  (``dualight/data/references``, :data:`REFERENCE_DIR`: mean and variance of the mean), or one
+  rendered by Mitsuba on first use and cached (``--cache``; the rooms); without Mitsuba those
+  scenes are skipped, and said so in one line;
 * the furnace's analytic radiance ``Le / (1 - rho)``.
+
+What an install lacks is said in one line each, and the rest runs: without colour-science no
+Delta E (``null`` in the JSON), without matplotlib no ``bench.png`` (``pip install
+"dualight[bench]"`` has both, and Mitsuba).
 
 Errors: relMSE (pbrt-v4's ``(x - y)^2 / (y + 0.01)^2``, mean over pixels and channels) minus
 the reference's own noise term (``var / (y + 0.01)^2``), and the mean CIE Delta E 2000 of the
@@ -30,9 +35,11 @@ from __future__ import annotations
 
 import argparse
 import functools
+import importlib.util
 import json
 import os
 import platform
+import sys
 import time
 import warnings
 from collections.abc import Callable
@@ -54,6 +61,10 @@ MAX_DEPTH = 8
 EPS = 1e-2  # relMSE's offset (pbrt-v4)
 ROOMS_REFERENCE_SPP = 8192
 EXACT = 1e-10  # relMSE at float rounding: no efficiency ratio is meaningful
+REFERENCE_DIR = Path(__file__).resolve().parent / "data" / "references"
+"""The Mitsuba 3 references shipped with the package: ``NAME_mean.exr`` and ``NAME_var.exr``
+(variance of the mean); how they were made is in the README.md beside them."""
+INSTALL_HINT = 'pip install "dualight[bench]"'
 
 
 @dataclass(frozen=True)
@@ -68,7 +79,7 @@ class Reference:
 @dataclass(frozen=True)
 class BenchScene:
     build: Callable[[], Scene]
-    reference: str  # "test:NAME" (tests/references), "mitsuba" (rendered, cached) or "furnace"
+    reference: str  # "test:NAME" (REFERENCE_DIR), "mitsuba" (rendered, cached) or "furnace"
 
 
 SCENE_SET: dict[str, BenchScene] = {
@@ -89,34 +100,50 @@ RADIOSITY_LEVELS: dict[str, list[dict[str, float]]] = {
 }
 
 
-def _repository_references() -> Path | None:
-    here = Path(__file__).resolve()
-    for parent in here.parents:
-        candidate = parent / "tests" / "references"
-        if (candidate / "cornell_64_mean.exr").exists():
-            return candidate
-    return None
+def _importable(module: str) -> bool:
+    """Whether ``module`` can be imported (without importing it: Mitsuba takes seconds)."""
+    if module in sys.modules:
+        return sys.modules[module] is not None
+    return importlib.util.find_spec(module) is not None
 
 
 def load_reference(name: str, spec: str, scene: Scene, cache: Path) -> Reference | None:
-    """The scene's reference, or None (with the reason printed) when it cannot be had."""
+    """The scene's reference, or None (with the reason printed in one line) when it cannot be
+    had.
+
+    ``spec`` is ``"furnace"`` (the analytic radiance), ``"test:KEY"`` (the shipped Mitsuba
+    reference ``KEY`` in :data:`REFERENCE_DIR`) or ``"mitsuba"`` (rendered by Mitsuba once,
+    ``ROOMS_REFERENCE_SPP`` samples per pixel, and kept in ``cache``).
+    """
     if spec == "furnace":
         mean = np.full((64, 64, 3), scenes.furnace_radiance(0.5, 1.0), dtype=np.float32)
         return Reference(mean, np.zeros_like(mean), "analytic Le / (1 - rho)")
     if spec.startswith("test:"):
-        directory = _repository_references()
-        if directory is None:
-            print(f"  {name}: no tests/references beside this package: skipped")
-            return None
         key = spec[5:]
-        mean = np.asarray(Image.load(directory / f"{key}_mean.exr"))
-        var = np.asarray(Image.load(directory / f"{key}_var.exr"))
-        return Reference(mean, var, f"Mitsuba 3, tests/references/{key}")
+        mean_path, var_path = REFERENCE_DIR / f"{key}_mean.exr", REFERENCE_DIR / f"{key}_var.exr"
+        if not (mean_path.exists() and var_path.exists()):
+            print(f"  {name}: reference {key} not in {REFERENCE_DIR} (reinstall dualight): skipped")
+            return None
+        mean = np.asarray(Image.load(mean_path))
+        var = np.asarray(Image.load(var_path))
+        return Reference(mean, var, f"Mitsuba 3, dualight/data/references/{key}")
+    if spec != "mitsuba":
+        raise ValueError(f"unknown reference {spec!r}: 'furnace', 'test:KEY' or 'mitsuba'")
+    return _mitsuba_reference(name, scene, cache)
+
+
+def _mitsuba_reference(name: str, scene: Scene, cache: Path) -> Reference | None:
     cam = scene.camera
     assert cam is not None
     key = f"{name}_{cam.width}x{cam.height}_d{MAX_DEPTH}_spp{ROOMS_REFERENCE_SPP}"
     mean_path, var_path = cache / f"{key}_mean.exr", cache / f"{key}_var.exr"
     if not (mean_path.exists() and var_path.exists()):
+        if not _importable("mitsuba"):
+            print(
+                f"  {name}: its reference is rendered once by Mitsuba 3, which is not installed "
+                f"({INSTALL_HINT}): skipped"
+            )
+            return None
         try:
             from dualight import mitsuba as dmi
 
@@ -135,16 +162,17 @@ def load_reference(name: str, spec: str, scene: Scene, cache: Path) -> Reference
     return Reference(mean, var, f"Mitsuba 3, {ROOMS_REFERENCE_SPP} spp (cached)")
 
 
-def errors(image: np.ndarray, ref: Reference) -> dict[str, float]:
-    """relMSE (minus the reference's noise term) and mean Delta E 2000 against ``ref``."""
+def errors(image: np.ndarray, ref: Reference) -> dict[str, float | None]:
+    """relMSE (minus the reference's noise term) and mean Delta E 2000 against ``ref``; Delta
+    E is None without colour-science."""
     raw = metrics.relmse(image, ref.mean, EPS)
     floor = float(np.mean(ref.variance / (ref.mean + EPS) ** 2))
-    de = metrics.delta_e2000(image, ref.mean)
+    de = metrics.delta_e2000(image, ref.mean)["mean"] if _importable("colour") else None
     return {
         "relmse": max(raw - floor, 1e-12),
         "relmse_raw": raw,
         "reference_floor": floor,
-        "delta_e2000": de["mean"],
+        "delta_e2000": de,
     }
 
 
@@ -185,6 +213,67 @@ def _count(method: str, stats: dict[str, Any], pixels: int) -> str:
     return f"{stats.get('spp', 0)} spp"
 
 
+def _jobs(
+    scene: Scene, method: str, budgets: list[float]
+) -> list[tuple[dict[str, float], Callable[[], tuple[np.ndarray, float, dict]]]]:
+    """The runs of ``method`` on ``scene``: (its level or budget, the job)."""
+    if method in RADIOSITY_LEVELS:
+        return [
+            (level, functools.partial(_radiosity_run, scene, method, level))
+            for level in RADIOSITY_LEVELS[method]
+        ]
+    return [
+        ({"budget": b}, functools.partial(_mc_run, scene, method, b, 100 + i))
+        for i, b in enumerate(budgets)
+    ]
+
+
+def _bench_scene(name: str, methods: list[str], budgets: list[float], cache: Path) -> dict:
+    """Every method on scene ``name`` of the set: its summary entry."""
+    spec = SCENE_SET[name]
+    scene = spec.build()
+    print(f"{name}:", flush=True)
+    ref = load_reference(name, spec.reference, scene, cache)
+    if ref is None:
+        return {"skipped": "no reference"}
+    render(scene, "path", spp=1, max_depth=1, progress=False)  # BVH built outside the timings
+    cam = scene.camera
+    assert cam is not None
+    runs: list[dict[str, Any]] = []
+    skipped: dict[str, str] = {}
+    for method in methods:
+        if method in RADIOSITY_LEVELS and scene.has_specular:
+            skipped[method] = "specular surfaces: radiosity needs an all-diffuse scene"
+            print(f"  {method:>14} skipped: {skipped[method]}", flush=True)
+            continue
+        for level, job in _jobs(scene, method, budgets):
+            image, seconds, stats = job()
+            r = {"method": method, **level, "seconds": seconds, **errors(image, ref)}
+            r["efficiency"] = 1.0 / (r["relmse"] * seconds)
+            r["count"] = _count(method, stats, cam.width * cam.height)
+            r["stats"] = {
+                k: v
+                for k, v in stats.items()
+                if v is None or isinstance(v, bool | int | float | str)
+            }
+            runs.append(r)
+            de = "-" if r["delta_e2000"] is None else f"{r['delta_e2000']:.2f}"
+            print(
+                f"  {method:>14} {seconds:6.2f} s {r['count']:>20} relMSE {r['relmse']:.3e} "
+                f"dE2000 {de}",
+                flush=True,
+            )
+    return {"reference": ref.source, "runs": runs, "skipped": skipped}
+
+
+def _say_what_is_missing() -> None:
+    """One line for each optional package whose part of the bench cannot run here."""
+    if not _importable("colour"):
+        print(f"Delta E 2000 needs colour-science ({INSTALL_HINT}): not computed")
+    if not _importable("matplotlib"):
+        print(f"bench.png needs matplotlib ({INSTALL_HINT}): not written")
+
+
 def run(args: argparse.Namespace) -> int:
     """Run ``python -m dualight bench`` with parsed ``args``; returns the exit code."""
     budgets = [float(b) for b in args.budgets.split(",")]
@@ -195,7 +284,6 @@ def run(args: argparse.Namespace) -> int:
         raise SystemExit(f"unknown scene or method: {', '.join(sorted(unknown))}")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    cache = Path(args.cache)
     start = time.perf_counter()
     summary: dict[str, Any] = {
         "environment": {
@@ -208,62 +296,21 @@ def run(args: argparse.Namespace) -> int:
         "max_depth": MAX_DEPTH,
         "scenes": {},
     }
+    _say_what_is_missing()
     for name in names:
-        spec = SCENE_SET[name]
-        scene = spec.build()
-        print(f"{name}:", flush=True)
-        ref = load_reference(name, spec.reference, scene, cache)
-        if ref is None:
-            summary["scenes"][name] = {"skipped": "no reference"}
-            continue
-        render(scene, "path", spp=1, max_depth=1, progress=False)  # BVH built outside the timings
-        cam = scene.camera
-        assert cam is not None
-        pixels = cam.width * cam.height
-        runs: list[dict[str, Any]] = []
-        skipped: dict[str, str] = {}
-        for method in methods:
-            if method in RADIOSITY_LEVELS:
-                if scene.has_specular:
-                    skipped[method] = "specular surfaces: radiosity needs an all-diffuse scene"
-                    continue
-                jobs = [
-                    (level, functools.partial(_radiosity_run, scene, method, level))
-                    for level in RADIOSITY_LEVELS[method]
-                ]
-            else:
-                jobs = [
-                    ({"budget": b}, functools.partial(_mc_run, scene, method, b, 100 + i))
-                    for i, b in enumerate(budgets)
-                ]
-            for level, job in jobs:
-                image, seconds, stats = job()
-                r = {"method": method, **level, "seconds": seconds, **errors(image, ref)}
-                r["efficiency"] = 1.0 / (r["relmse"] * seconds)
-                r["count"] = _count(method, stats, pixels)
-                r["stats"] = {
-                    k: v
-                    for k, v in stats.items()
-                    if v is None or isinstance(v, bool | int | float | str)
-                }
-                runs.append(r)
-                print(
-                    f"  {method:>14} {seconds:6.2f} s {r['count']:>20} relMSE {r['relmse']:.3e} "
-                    f"dE2000 {r['delta_e2000']:.2f}",
-                    flush=True,
-                )
-        summary["scenes"][name] = {"reference": ref.source, "runs": runs, "skipped": skipped}
+        summary["scenes"][name] = _bench_scene(name, methods, budgets, Path(args.cache))
     summary["equal_time"] = equal_time_table(summary, max(budgets))
     summary["environment"]["load_average_at_end"] = list(os.getloadavg())
     summary["environment"]["wall_seconds"] = time.perf_counter() - start
     (out / "bench.json").write_text(json.dumps(summary, indent=1) + "\n")
     table = markdown_table(summary)
     (out / "bench.md").write_text(table)
-    plot(summary, out / "bench.png")
+    written = "bench.json and bench.md"
+    if _importable("matplotlib"):
+        plot(summary, out / "bench.png")
+        written = "bench.json, bench.md and bench.png"
     print("\n" + table)
-    print(
-        f"wrote {out / 'bench.json'}, bench.md and bench.png in {time.perf_counter() - start:.0f} s"
-    )
+    print(f"wrote {written} to {out} in {time.perf_counter() - start:.0f} s")
     return 0
 
 

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from dualight import _core
+from dualight._progress import TqdmProgress as _TqdmProgress
 from dualight.executor import as_executor, render_chain_split, render_split
 from dualight.image import Image
 from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator, Heuristic, Method, Sampler
@@ -19,32 +20,6 @@ from dualight.scene import Camera, Scene
 _DEFAULT = _core.BdptOptions()
 
 ProgressCallback = Callable[[int, int], None]
-
-
-class _TqdmProgress:
-    """Adapts the core's (done, total) callback to a tqdm bar, created on first use and reset
-    when the total changes."""
-
-    def __init__(self, description: str) -> None:
-        self._description = description
-        self._bar: Any = None
-
-    def __call__(self, done: int, total: int) -> None:
-        if self._bar is None:
-            from tqdm.auto import tqdm
-
-            self._bar = tqdm(
-                total=total or None, desc=self._description, unit="spl", unit_scale=True
-            )
-        elif total and total != self._bar.total:
-            # A new phase (the MLT methods: direct light, then the chains' mutations).
-            self._bar.reset(total=total)
-        self._bar.n = done
-        self._bar.refresh()
-
-    def close(self) -> None:
-        if self._bar is not None:
-            self._bar.close()
 
 
 def _check_int(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:

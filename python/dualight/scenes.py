@@ -759,7 +759,7 @@ def door_ajar(
     opening : float, optional
         The door's angle in degrees, in ``(0, 90]``. The default, 10 degrees, is hard for a
         path tracer, yet a Mitsuba ``path`` reference at 64 x 64 converges in minutes
-        (``tests/references/README.md``).
+        (``dualight/data/references/README.md``).
     light_scale : float, optional
         Multiplies the emitted radiance, ``> 0``.
     reflectance_scale : float, optional

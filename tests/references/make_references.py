@@ -1,6 +1,8 @@
 """Render the Mitsuba 3 reference images that the tests compare against.
 
-Usage (from the repository root, with Mitsuba installed)::
+Usage (from the repository root, with Mitsuba installed); they are written into the package,
+``python/dualight/data/references`` (shipped as package data, so ``python -m dualight bench``
+and the notebooks find them in a pip install), unless ``--out`` says otherwise::
 
     .venv/bin/python tests/references/make_references.py            # every reference
     .venv/bin/python tests/references/make_references.py cornell_64  # just one
@@ -10,7 +12,7 @@ Each reference ``NAME`` is stored as two float32 EXR files written by ``dualight
 carrying the render settings as metadata (``scene``, ``spp``, ``seed``, ``variant``,
 ``max_depth``, ``rr_depth``, ``mitsuba``, ``seconds``, ``quantity``).
 
-The references (see README.md beside this file for how long they took):
+The references (see README.md beside them for how long they took):
 
 * ``cornell_64``: ``cornell_box(resolution=(64, 64))``, ``max_depth=8`` (bounded, so every
   renderer stops at the same path length), ``rr_depth=5`` (Mitsuba's default: Russian roulette
@@ -41,7 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
+HERE = Path(__file__).resolve().parents[2] / "python" / "dualight" / "data" / "references"
 
 
 @dataclass(frozen=True)

@@ -223,9 +223,9 @@ def solve(
     callback = None
     bar = None
     if progress is True:
-        from dualight.render import _TqdmProgress
+        from dualight._progress import TqdmProgress
 
-        bar = _TqdmProgress("form factors")
+        bar = TqdmProgress("form factors")
         callback = bar
     elif callable(progress):
         callback = progress
