@@ -35,4 +35,4 @@ fi
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.11.1" "pybind11>=2.12" "numpy>=1.24" "tqdm>=4.60" "trimesh>=4.0" \
   "pytest>=7" "colour-science>=0.4.3" "mitsuba>=3.5" "ruff>=0.4" "matplotlib>=3.7" "atheris>=2.3" \
-  "jupytext>=1.16" "nbmake>=1.5" "ipykernel>=6" "pybind11-stubgen>=2.5" "dask[distributed]>=2024.1"
+  "jupytext>=1.16" "nbclient>=0.7" "ipykernel>=6" "pybind11-stubgen>=2.5" "dask[distributed]>=2024.1"

@@ -66,6 +66,11 @@ def test_every_option_has_help_showing_its_default(capsys: pytest.CaptureFixture
         if name != "-h, --help":
             assert "default" in text, f"demo {name}: {text!r}"
     assert "default: 256x256" in demo["--resolution RESOLUTION"]
+    bench = _entries(_help(capsys, "bench"))
+    assert len(bench) >= 7, bench
+    for name, text in bench.items():
+        if name != "-h, --help":
+            assert "default" in text, f"bench {name}: {text!r}"
 
 
 @pytest.mark.parametrize("how", ["positional", "--scene"])

@@ -50,6 +50,7 @@ from typing import Any
 import numpy as np
 
 from dualight import metrics, scenes
+from dualight._cli import add_subcommand
 from dualight.image import Image
 from dualight.methods import METHODS
 from dualight.plotting import curves_by, save_relmse_against_time
@@ -381,11 +382,15 @@ def plot(summary: dict[str, Any], path: Path) -> None:
 
 def add_parser(sub: Any) -> None:
     """Add the ``bench`` subcommand to the ``python -m dualight`` argument parser."""
-    p = sub.add_parser("bench", help="error against run time for every method on the scene set")
+    p = add_subcommand(sub, "bench", "error against run time for every method on the scene set")
     p.add_argument("--budgets", default="0.5,1,2,4", help="seconds per render, comma-separated")
-    p.add_argument("--scenes", default=",".join(SCENE_SET))
-    p.add_argument("--methods", default=",".join((*MC_METHODS, *RADIOSITY_LEVELS)))
-    p.add_argument("--out", default="out/bench")
+    p.add_argument("--scenes", default=",".join(SCENE_SET), help="scenes, comma-separated")
+    p.add_argument(
+        "--methods",
+        default=",".join((*MC_METHODS, *RADIOSITY_LEVELS)),
+        help="methods and radiosity levels, comma-separated",
+    )
+    p.add_argument("--out", default="out/bench", help="output folder")
     p.add_argument(
         "--cache",
         default=str(Path.home() / ".cache" / "dualight" / "references"),
