@@ -53,24 +53,16 @@ def test_every_option_has_help_showing_its_default(capsys: pytest.CaptureFixture
     top = _entries(_help(capsys))
     assert set(top) >= {"-h, --help", "--version", "{render,demo,bench}"}
     assert all(top.values()), top
-    render = _entries(_help(capsys, "render"))
-    assert len(render) >= 16, render
-    for name, text in render.items():
-        if name != "-h, --help":
-            assert "default" in text, f"render {name}: {text!r}"
-    assert "default: 64" in render["--spp SPP"]
-    assert "(default: out.exr)" in render["-o OUTPUT, --output OUTPUT"]
-    demo = _entries(_help(capsys, "demo"))
-    assert len(demo) >= 8, demo
-    for name, text in demo.items():
-        if name != "-h, --help":
-            assert "default" in text, f"demo {name}: {text!r}"
-    assert "default: 256x256" in demo["--resolution RESOLUTION"]
-    bench = _entries(_help(capsys, "bench"))
-    assert len(bench) >= 7, bench
-    for name, text in bench.items():
-        if name != "-h, --help":
-            assert "default" in text, f"bench {name}: {text!r}"
+    entries = {}
+    for command, least in (("render", 16), ("demo", 8), ("bench", 7)):
+        entries[command] = _entries(_help(capsys, command))
+        assert len(entries[command]) >= least, entries[command]
+        for name, text in entries[command].items():
+            if name != "-h, --help":
+                assert "default" in text, f"{command} {name}: {text!r}"
+    assert "default: 64" in entries["render"]["--spp SPP"]
+    assert "(default: out.exr)" in entries["render"]["-o OUTPUT, --output OUTPUT"]
+    assert "default: 256x256" in entries["demo"]["--resolution RESOLUTION"]
 
 
 @pytest.mark.parametrize("how", ["positional", "--scene"])
