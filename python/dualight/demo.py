@@ -42,6 +42,7 @@ from dualight.scene import Scene
 TITLE = "dualight: radiance and importance, one measurement"
 CONTROL_SCALE = 0.97  # the duality test's negative control: a light 3 % too dim
 LIMIT_RAYS = 20_000_000  # rays cast to measure Embree's limit (enough for 1 % timing)
+WELCH_BLOCK = 16  # the test suite's judge of the path tracer on the caustic box (heavy tails)
 MLT_DEPTH = 8  # the door reference's max_depth (tests/references)
 
 
@@ -297,6 +298,17 @@ def _renderable_by_light_tracing(scene: Scene, samples_per_axis: int = 4) -> np.
     return ~hits_delta.any(axis=2)
 
 
+def _welch(
+    pt: Image, lt: Image, mask: np.ndarray, scale: float
+) -> tuple[metrics.WelchResult, metrics.WelchResult]:
+    """Path against light tracing (the latter times ``scale``), per pixel and per block."""
+    lt_mean, lt_var = scale * np.asarray(lt), scale**2 * np.asarray(lt.variance)
+    return (
+        metrics.welch_test(pt, pt.variance, lt_mean, lt_var, mask=mask),
+        metrics.welch_test(pt, pt.variance, lt_mean, lt_var, block=WELCH_BLOCK, mask=mask),
+    )
+
+
 def _duality(demo: Demo) -> Section:
     b = demo.budget
     scene = scenes.cornell_box(resolution=b.duality_resolution, variant="caustics")
@@ -306,17 +318,8 @@ def _duality(demo: Demo) -> Section:
     }
     pt, lt = images["path"], images["light"]
     mask = _renderable_by_light_tracing(scene)
-    block = 16  # the test suite's judge for the path tracer here (heavy tails per pixel)
-
-    def welch(scale: float) -> tuple[metrics.WelchResult, metrics.WelchResult]:
-        lt_mean, lt_var = scale * np.asarray(lt), scale**2 * np.asarray(lt.variance)
-        return (
-            metrics.welch_test(pt, pt.variance, lt_mean, lt_var, mask=mask),
-            metrics.welch_test(pt, pt.variance, lt_mean, lt_var, block=block, mask=mask),
-        )
-
-    pixels, blocks = welch(1.0)
-    control_pixels, control_blocks = welch(CONTROL_SCALE)
+    pixels, blocks = _welch(pt, lt, mask, 1.0)
+    control_pixels, control_blocks = _welch(pt, lt, mask, CONTROL_SCALE)
     agree = blocks.pass_fraction == 1.0
     control_agrees = control_blocks.pass_fraction == 1.0
     demo.report["duality"] = {
@@ -344,7 +347,7 @@ def _duality(demo: Demo) -> Section:
         for m, im in images.items()
     ]
     lines += [
-        f"Welch test (family-wise alpha 0.01, Sidak) on {block}x{block} blocks of the "
+        f"Welch test (family-wise alpha 0.01, Sidak) on {WELCH_BLOCK}x{WELCH_BLOCK} blocks of the "
         f"{int(mask.sum())} of {mask.size} pixels a light tracer can render: "
         f"{100 * blocks.pass_fraction:.1f}% of {blocks.n_units} blocks pass: "
         + ("the two estimate the same image" if agree else "the two images DIFFER"),
