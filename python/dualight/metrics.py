@@ -369,7 +369,7 @@ def _colour_science(needed_by: str) -> tuple[Any, type[Warning]]:
     except ImportError as exc:
         raise ImportError(
             f"dualight.metrics.{needed_by} needs colour-science, which is not installed: "
-            'pip install colour-science (or pip install "dualight[bench]")'
+            "pip install colour-science (or the extras: pip install \"dualight[notebooks]\")"
         ) from exc
     return colour, ColourWarning
 
