@@ -43,9 +43,8 @@ from dualight.plotting import curves_by, save_relmse_against_time
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 REFERENCES = REFERENCE_DIR  # shipped with the package
-sys.path[:0] = [str(HERE), str(HERE.parent / "tests")]
+sys.path[:0] = [str(HERE)]
 from bench_path import time_mitsuba  # noqa: E402
-from test_pathspace_vs_mitsuba import renderable_by_light_tracing  # noqa: E402
 
 SCENES: dict[str, tuple[str, Callable[[], dualight.Scene]]] = {
     "cornell": ("cornell_64", lambda: scenes.cornell_box(resolution=(64, 64))),
@@ -131,7 +130,7 @@ def main() -> None:
         scene = build()
         ref, ref_var, info = load_reference(ref_name)
         max_depth = int(info["max_depth"])
-        mask = renderable_by_light_tracing(scene)
+        mask = metrics.renderable_by_light_tracing(scene)
         dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
         runs: list[dict[str, Any]] = []
         for method in METHODS:

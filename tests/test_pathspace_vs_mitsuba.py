@@ -18,7 +18,7 @@ How each render is judged, and why (``Judge``):
   light" can make those paths) keep heavy tails in the spheres' pixels.
 * The light tracer cannot render light that reaches the camera by a specular bounce (a mirror
   or glass seen directly): those pixels are masked out of its comparisons
-  (``renderable_by_light_tracing``), and nowhere else.
+  (``dualight.metrics.renderable_by_light_tracing``), and nowhere else.
 """
 
 from __future__ import annotations
@@ -88,33 +88,6 @@ def _reference(name: str) -> tuple[np.ndarray, np.ndarray, dict]:
     return np.asarray(mean), np.asarray(var), mean.stats
 
 
-def renderable_by_light_tracing(scene: dualight.Scene, subsamples: int = 4) -> np.ndarray:
-    """Pixels whose every camera ray (on a subsamples^2 grid) first hits a non-specular
-    surface, or nothing: the only pixels a light tracer can render completely."""
-    cam = scene.camera
-    assert cam is not None
-    ray_cam = cam._compile()
-    offsets = (np.arange(subsamples) + 0.5) / subsamples
-    origins, directions, pixel = [], [], []
-    for y in range(cam.height):
-        for x in range(cam.width):
-            for oy in offsets:
-                for ox in offsets:
-                    o, d = ray_cam.generate_ray(x + ox, y + oy)
-                    origins.append(o)
-                    directions.append(d)
-                    pixel.append(y * cam.width + x)
-    _, prim = scene._compile().intersect(np.array(origins), np.array(directions))
-    _, _, mesh_of = scene.triangle_arrays()
-    specular = np.array([not isinstance(m.material, dualight.Diffuse) for m in scene.meshes])
-    hits_specular = np.zeros(len(prim), dtype=bool)
-    hit = prim >= 0
-    hits_specular[hit] = specular[mesh_of[prim[hit]]]
-    bad = np.zeros(cam.width * cam.height, dtype=bool)
-    np.logical_or.at(bad, np.array(pixel), hits_specular)
-    return ~bad.reshape(cam.height, cam.width)
-
-
 @dataclass(frozen=True)
 class Outcome:
     pixel: metrics.WelchResult
@@ -153,7 +126,7 @@ def _compare(case: Case, method: str, seed: int, **wrong) -> Outcome:
         seed=seed,
         progress=False,
     )
-    mask = renderable_by_light_tracing(scene) if method == "light" else None
+    mask = metrics.renderable_by_light_tracing(scene) if method == "light" else None
     keep = np.ones(ref.shape[:2], dtype=bool) if mask is None else mask
     mean, var = np.asarray(image), image.variance
 

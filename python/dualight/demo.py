@@ -284,20 +284,6 @@ def _hierarchical(demo: Demo) -> Section:
     )
 
 
-def _renderable_by_light_tracing(scene: Scene, samples_per_axis: int = 4) -> np.ndarray:
-    """Pixels whose camera samples all first hit a diffuse surface or nothing: the pixels a
-    light tracer renders completely (it cannot connect to the eye through a mirror or glass)."""
-    from dualight import _core
-
-    cam = scene.camera
-    assert cam is not None
-    prim, _ = _core.trace_camera_hits(scene._compile(), cam._compile(), samples_per_axis)
-    _, _, mesh_of = scene.triangle_arrays()
-    delta = np.array([not m.material.is_diffuse_reflector for m in scene.meshes] + [False])
-    hits_delta = delta[np.where(prim >= 0, mesh_of[np.maximum(prim, 0)], len(scene.meshes))]
-    return ~hits_delta.any(axis=2)
-
-
 def _welch(
     pt: Image, lt: Image, mask: np.ndarray, scale: float
 ) -> tuple[metrics.WelchResult, metrics.WelchResult]:
@@ -317,7 +303,7 @@ def _duality(demo: Demo) -> Section:
         for method in ("path", "light")
     }
     pt, lt = images["path"], images["light"]
-    mask = _renderable_by_light_tracing(scene)
+    mask = metrics.renderable_by_light_tracing(scene)
     pixels, blocks = _welch(pt, lt, mask, 1.0)
     control_pixels, control_blocks = _welch(pt, lt, mask, CONTROL_SCALE)
     agree = blocks.pass_fraction == 1.0

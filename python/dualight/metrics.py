@@ -17,10 +17,13 @@ import math
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from dualight.scene import Scene
 
 __all__ = [
     "Comparison",
@@ -539,3 +542,33 @@ def compare(
         relmse=relmse(np.asarray(image)[keep][None], np.asarray(reference)[keep][None]),
         passed=bool(passed),
     )
+
+
+def renderable_by_light_tracing(scene: Scene, subsamples: int = 4) -> np.ndarray:
+    """``H x W`` bool: the pixels whose every camera ray (a ``subsamples x subsamples`` grid of
+    cell centres) first hits a diffuse reflector, or nothing. Only these can a light tracer
+    render completely: it cannot reach the pinhole through a mirror or glass seen directly, so
+    compare it with another estimator on this mask (``welch_test(..., mask=...)``)."""
+    cam = scene.camera
+    if cam is None:
+        raise ValueError("scene has no camera")
+    ray_cam = cam._compile()
+    offsets = (np.arange(subsamples) + 0.5) / subsamples
+    origins, directions, pixel = [], [], []
+    for y in range(cam.height):
+        for x in range(cam.width):
+            for oy in offsets:
+                for ox in offsets:
+                    o, d = ray_cam.generate_ray(x + ox, y + oy)
+                    origins.append(o)
+                    directions.append(d)
+                    pixel.append(y * cam.width + x)
+    _, prim = scene._compile().intersect(np.array(origins), np.array(directions))
+    _, _, mesh_of = scene.triangle_arrays()
+    not_diffuse = np.array([not m.material.is_diffuse_reflector for m in scene.meshes])
+    hits_not_diffuse = np.zeros(len(prim), dtype=bool)
+    hit = prim >= 0
+    hits_not_diffuse[hit] = not_diffuse[mesh_of[prim[hit]]]
+    bad = np.zeros(cam.width * cam.height, dtype=bool)
+    np.logical_or.at(bad, np.array(pixel), hits_not_diffuse)
+    return ~bad.reshape(cam.height, cam.width)
