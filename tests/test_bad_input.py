@@ -354,6 +354,12 @@ RENDER = [
     ("strategy images for path", _render(strategy_images=True), ValueError, "bdpt' only"),
     ("progress not callable", _render(progress="yes"), TypeError, "progress must be"),
     ("mutations for path", _render(mutations_per_pixel=4), ValueError, "mutations_per_pixel"),
+    (
+        "mutations_per_pixel 2**32",  # fixed: pybind11's overload list (issue 18)
+        _render("pssmlt", mutations_per_pixel=2**32),
+        ValueError,
+        r"mutations_per_pixel must be an integer <= 4294967295",
+    ),
     ("mmlt unbounded depth", _render("mmlt"), ValueError, "bounded max_depth"),
     ("mlt options for path", _render(mlt={"chains": 4}), ValueError, "MLT methods only"),
     (

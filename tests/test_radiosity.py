@@ -472,3 +472,16 @@ def test_without_importance_the_dual_is_unavailable() -> None:
         with pytest.raises(ValueError, match="importance was not solved"):
             sol.render(mode=mode)
     assert np.asarray(sol.render()).shape == (8, 8, 3)
+
+
+@pytest.mark.parametrize("method", ["direct", "jacobi", "hierarchical"])
+def test_absurd_thread_counts_use_every_core_and_change_nothing(method: str) -> None:
+    """threads=100000 segfaulted (jacobi and hierarchical; direct from 10**7: Eigen's OpenMP
+    team) (issue 18): the core gives each request at most one worker per core, and the
+    solution does not depend on the thread count."""
+    scene = scenes.furnace(0.5, 1.0, (8, 8))
+    kw = {"max_edge": 0.5} if method != "hierarchical" else {}
+    one = solve(scene, method, threads=1, **kw)
+    for threads in (100_000, 10**7):
+        many = solve(scene, method, threads=threads, **kw)
+        np.testing.assert_array_equal(many.B, one.B)

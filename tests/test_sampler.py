@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from statistics import NormalDist
+
 import numpy as np
 import pytest
 
@@ -41,6 +43,56 @@ def test_samples_are_uniform_and_dimensions_uncorrelated(sampler) -> None:
     assert np.all(np.abs(points.var(axis=0) - 1 / 12) < 0.01)
     corr = np.corrcoef(points.T)[np.triu_indices(8, 1)]
     assert np.max(np.abs(corr)) < 5 / np.sqrt(n)
+
+
+# Issue 18, item 0, not fixed yet: every Pcg32 of one seed starts from one state and differs
+# only in its increment. Hashing the state from (seed, stream) fixes both tests (lag
+# correlations under 0.0062, mean z^2 1.04 +- 0.05), but redraws every random number of the
+# library and ten fixed-seed tests then need a look (see the issue-17 closing note).
+SHARED_STATE = (
+    "issue 18 item 0: PCG streams of one seed share their state and differ only in the "
+    "increment, so the samples of a pixel are correlated"
+)
+
+
+@pytest.mark.xfail(strict=True, reason=SHARED_STATE)
+def test_samples_of_a_pixel_are_independent_of_one_another() -> None:
+    """Sample i and sample i + k of one pixel draw from generators of their own: no
+    correlation between their numbers at any lag. Seeded with one PCG state and the sample
+    index as the stream (issue 18), lag 2 correlated -0.078 in the second number and lag 8
+    -0.096 in the eighth, against a standard error of 0.0022 here."""
+    n, dims = 200_000, 4
+    x = _testing.sampler_points(INDEPENDENT, 7, 5, n, dims).reshape(n, 2 * dims)
+    x = x.astype(np.float64) - 0.5
+    lags = [1, 2, 3, 4, 5, 8, 16, 32, 64, 128]
+    corr = np.array(
+        [[np.mean(x[:-k, d] * x[k:, d]) * 12.0 for d in range(2 * dims)] for k in lags]
+    )
+    # Sidak-corrected two-sided level 0.01 over every (lag, number).
+    z = NormalDist().inv_cdf(1.0 + 0.5 * np.expm1(np.log1p(-0.01) / corr.size))
+    assert np.max(np.abs(corr)) < z / np.sqrt(n), np.round(corr, 4)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=SHARED_STATE)
+def test_reported_variance_holds_at_high_sample_counts() -> None:
+    """Two renders with different seeds: z = (a - b) / sqrt(var_a + var_b) per pixel and
+    channel has mean z^2 = 1 when each render's variance is its true error. Correlated samples
+    within a pixel make the true variance drift from the reported one as spp grows (issue 18:
+    mean z^2 1.23-1.26 at 8192 spp on the 64x64 Cornell box; in this furnace 1.73 at 64x64,
+    0.57 with reflectance 0.9 and 8 bounces). The channels of a pixel share their paths, so the
+    standard error counts pixels, not values."""
+    scene = scenes.furnace(0.5, 1.0, resolution=(32, 32))
+    a, b = (
+        dualight.render(scene, "path", spp=8192, max_depth=3, seed=s, progress=False)
+        for s in (11, 12)
+    )
+    var = np.asarray(a.variance) + np.asarray(b.variance)
+    assert np.all(var > 0.0)
+    per_pixel = ((np.asarray(a) - np.asarray(b)) ** 2 / var).mean(axis=2).ravel()
+    se = per_pixel.std(ddof=1) / np.sqrt(per_pixel.size)
+    print(f"\nmean z^2 {per_pixel.mean():.4f} over {per_pixel.size} pixels, se {se:.4f}")
+    assert abs(per_pixel.mean() - 1.0) < 4.0 * se
 
 
 def test_sobol_scrambles_differ_between_pixels_and_seeds() -> None:

@@ -105,7 +105,8 @@ def _budget(
     if mutations_per_pixel is not None:
         if not estimator.metropolis:
             raise ValueError(f"mutations_per_pixel applies to {', '.join(METROPOLIS)} only")
-        _check_int("mutations_per_pixel", mutations_per_pixel, 1)
+        # The core counts them per pixel in 32 bits, as spp.
+        _check_int("mutations_per_pixel", mutations_per_pixel, 1, (1 << 32) - 1)
         spp = mutations_per_pixel
     return spp, threads
 

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <string>
 
+#include "core/parallel.h"
 #include "core/stopwatch.h"
 
 namespace dualight {
@@ -20,7 +21,7 @@ DirectSolver::DirectSolver(std::shared_ptr<const RadiositySystem> system, int th
                                 " patches is more than " + std::to_string(kMaxDirectPatches) +
                                 "; use an iterative method");
   }
-  if (threads > 0) Eigen::setNbThreads(threads);
+  if (threads > 0) Eigen::setNbThreads(worker_count(threads));
   const Stopwatch t0;
   const CsrMatrix& F = system_->matrices->F;
   Eigen::MatrixXd M(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));

@@ -1,4 +1,5 @@
 // Sampling warps against their densities, the discrete distribution, frames and PCG32.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -101,4 +102,29 @@ TEST_CASE("pcg32_floats_stay_below_one_and_streams_differ") {
   }
   CHECK(below);
   CHECK(differ);
+}
+
+// Streams of one seed are what a pixel's samples, an MLT population's chains and a patch's
+// form-factor rays draw from: the k-th numbers of streams s and s + lag must be uncorrelated.
+// With the state seeded as seed + increment, lag 2 correlated -0.078 and lag 8 -0.096 (the
+// standard error here is 0.0022); the bound is a Sidak-corrected 1 % level over 64 tests.
+// Expected to fail until issue 18, item 0 hashes the state from (seed, stream).
+TEST_CASE("pcg32_streams_of_one_seed_are_uncorrelated" * doctest::should_fail()) {
+  constexpr int kStreams = 200000, kNumbers = 8;
+  std::vector<float> x(static_cast<size_t>(kStreams) * kNumbers);
+  for (int s = 0; s < kStreams; ++s) {
+    Pcg32 rng(0x5eedull, static_cast<uint64_t>(s));
+    for (int k = 0; k < kNumbers; ++k) x[static_cast<size_t>(s) * kNumbers + k] = rng.next_float() - 0.5f;
+  }
+  double worst = 0.0;
+  for (const int lag : {1, 2, 3, 4, 8, 16, 64, 128}) {
+    for (int k = 0; k < kNumbers; ++k) {
+      double sum = 0.0;
+      for (int s = 0; s + lag < kStreams; ++s) {
+        sum += static_cast<double>(x[static_cast<size_t>(s) * kNumbers + k]) * x[static_cast<size_t>(s + lag) * kNumbers + k];
+      }
+      worst = std::max(worst, std::abs(12.0 * sum / (kStreams - lag)));
+    }
+  }
+  CHECK(worst < 3.78 / std::sqrt(static_cast<double>(kStreams)));
 }
