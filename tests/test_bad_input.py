@@ -154,6 +154,27 @@ CAMERA = [
 ]
 
 FILES = [
+    *(
+        (
+            f"image exposure {name}",  # fixed: nan was accepted, 1e6 an OverflowError (issue 18)
+            lambda t, e=e: dualight.Image(np.full((4, 4, 3), 0.5)).save(t / "a.png", exposure=e),
+            error,
+            "exposure must be a",
+        )
+        for name, e, error in [
+            ("nan", float("nan"), ValueError),
+            ("1e6", 1e6, ValueError),
+            ("-inf", float("-inf"), ValueError),
+            ("a bool", True, TypeError),
+            ("a string", "2", TypeError),
+        ]
+    ),
+    (
+        "tonemap exposure 1e6",
+        lambda t: dualight.Image(np.full((4, 4, 3), 0.5)).tonemap(1e6),
+        ValueError,
+        "exposure must be a finite number of stops",
+    ),
     (
         "image missing",
         lambda t: dualight.Image.load(t / "missing.exr"),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import numbers
 import os
 import tempfile
 from pathlib import Path
@@ -25,6 +26,24 @@ def srgb_decode(encoded: np.ndarray) -> np.ndarray:
     """Inverse of :func:`srgb_encode`."""
     x = np.clip(encoded, 0.0, 1.0)
     return np.where(x <= 0.04045, x / 12.92, np.power((x + 0.055) / 1.055, 2.4))
+
+
+# Exposures in stops that the tone mapping can apply without overflow: 2**256 times float32's
+# largest value stays far inside float64's range.
+_MAX_STOPS = 256.0
+
+
+def _exposure(value: Any) -> float:
+    """``value`` as an exposure in stops: a real number (numpy's too, not a bool), finite and
+    within +-_MAX_STOPS (exposure=nan was accepted, 1e6 gave an OverflowError)."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
+        raise TypeError(f"exposure must be a number of stops, got {value!r}")
+    stops = float(value)
+    if not abs(stops) <= _MAX_STOPS:
+        raise ValueError(
+            f"exposure must be a finite number of stops within +-{_MAX_STOPS:g}, got {value!r}"
+        )
+    return stops
 
 
 def _json(value: Any) -> Any:
@@ -138,7 +157,7 @@ class Image(NDArrayOperatorsMixin):
 
     def tonemap(self, exposure: float = 0.0) -> np.ndarray:
         """8-bit sRGB (H x W x 3 uint8) after scaling by ``2**exposure`` and clipping."""
-        encoded = srgb_encode(self._pixels.astype(np.float64) * 2.0**exposure)
+        encoded = srgb_encode(self._pixels.astype(np.float64) * 2.0 ** _exposure(exposure))
         return np.round(encoded * 255.0).astype(np.uint8)
 
     # files ------------------------------------------------------------------------------
@@ -149,6 +168,7 @@ class Image(NDArrayOperatorsMixin):
         formats are tone mapped: scaled by ``2**exposure``, clipped, sRGB encoded.
         """
         path = Path(path)
+        exposure = _exposure(exposure)
         if not path.parent.exists():
             raise FileNotFoundError(f"directory does not exist: {path.parent}")
         from dualight import _core
