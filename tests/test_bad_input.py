@@ -95,6 +95,9 @@ SCENE_BUILDER = [
     ("vertices (V, 2)", _add(QV[:, :2]), ValueError, r"vertices must have shape \(V, 3\)"),
     ("vertices empty", _add(np.zeros((0, 3))), ValueError, r"shape \(V, 3\) with V > 0"),
     ("vertices not numbers", _add([["a", "b", "c"]] * 4), ValueError, "vertices must be"),  # fixed
+    # fixed (issue 18): the imaginary part was dropped, datetimes were taken as seconds
+    ("vertices complex", _add(QV + 1j), ValueError, "real numbers, got complex128"),
+    ("vertices datetime64", _add(QV.astype("datetime64[s]")), ValueError, "got datetime64"),
     ("face index too large", _add(faces=[[0, 1, 7]]), ValueError, "out of range for 4 vertices"),
     ("face index negative", _add(faces=[[0, -1, 2]]), ValueError, "out of range"),
     ("faces (F, 2)", _add(faces=[[0, 1]]), ValueError, r"\(F, 3\) or \(F, 4\)"),
@@ -131,6 +134,7 @@ SCENE_BUILDER = [
 ]
 
 CAMERA = [
+    ("fov a bool", _camera(fov=True), ValueError, "fov must be a number"),  # fixed: 1 degree
     ("resolution zero", _camera(resolution=(0, 8)), ValueError, "resolution"),
     ("resolution negative", _camera(resolution=(-4, 4)), ValueError, "resolution"),
     ("resolution fractional", _camera(resolution=(8.5, 8)), ValueError, "resolution"),
@@ -154,6 +158,12 @@ CAMERA = [
 ]
 
 FILES = [
+    (
+        "image save path with a NUL byte",  # fixed: the core wrote the file named up to it
+        lambda t: dualight.Image(np.full((4, 4, 3), 0.5)).save(t / "a\0b.png"),
+        ValueError,
+        "NUL byte",
+    ),
     *(
         (
             f"image exposure {name}",  # fixed: nan was accepted, 1e6 an OverflowError (issue 18)
@@ -454,6 +464,12 @@ RENDER = [
 ]
 
 SOLVE = [
+    (
+        "solve max_edge 1e-100",  # fixed: the int64 cast overflowed, 32 patches (issue 18)
+        _solve(max_edge=1e-100),
+        ValueError,
+        "more than 50 million patches",
+    ),
     ("solve scene not a Scene", _solve(scene=lambda: "scene"), TypeError, "scene must be"),  # fixed
     ("solve camera not a Camera", _solve(camera="cam"), TypeError, "camera must be"),  # fixed
     (

@@ -168,6 +168,8 @@ class Image(NDArrayOperatorsMixin):
         formats are tone mapped: scaled by ``2**exposure``, clipped, sRGB encoded.
         """
         path = Path(path)
+        if "\0" in str(path):  # the core's C string would end there: another file
+            raise ValueError(f"image path contains a NUL byte: {str(path)!r}")
         exposure = _exposure(exposure)
         if not path.parent.exists():
             raise FileNotFoundError(f"directory does not exist: {path.parent}")

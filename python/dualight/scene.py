@@ -95,6 +95,8 @@ class Camera:
         object.__setattr__(self, "target", target)
         object.__setattr__(self, "up", up)
         try:
+            if isinstance(self.fov, bool | np.bool_):  # True was taken as 1 degree
+                raise TypeError
             fov = float(self.fov)
         except (TypeError, ValueError):
             raise ValueError(f"camera fov must be a number of degrees, got {self.fov!r}") from None
@@ -387,6 +389,11 @@ class Scene:
             )
         if degenerate not in ("raise", "drop"):
             raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
+        kind = np.asarray(vertices).dtype.kind
+        if kind in "bcmMUSV":  # complex parts and datetimes were dropped or taken as numbers
+            raise ValueError(
+                f"{name}: vertices must be (V, 3) real numbers, got {np.asarray(vertices).dtype}"
+            )
         try:
             v = np.array(vertices, dtype=np.float64, copy=True)
         except (TypeError, ValueError):

@@ -99,12 +99,15 @@ class PatchMesh:
             corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             if max_edge is not None:
                 edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
-                divisions = np.ceil(edges / max_edge).astype(np.int64)
+                per_edge = np.ceil(edges / max_edge)
             else:
-                divisions = np.ceil(np.sqrt(mesh.areas / max_area)).astype(np.int64)
-            divisions = np.maximum(divisions, 1)
-            if int((divisions.astype(np.float64) ** 2).sum()) + offset > 50_000_000:
+                per_edge = np.ceil(np.sqrt(mesh.areas / max_area))
+            # Counted in floats before any integer cast: max_edge=1e-100 overflowed int64 and
+            # made 32 patches.
+            per_edge = np.maximum(per_edge, 1.0)
+            if float((per_edge**2).sum()) + offset > 50_000_000:
                 raise ValueError("this subdivision would make more than 50 million patches")
+            divisions = per_edge.astype(np.int64)
             for n in np.unique(divisions):
                 bary, sub = grids.setdefault(int(n), _grid(int(n)))
                 sel = np.nonzero(divisions == n)[0]
