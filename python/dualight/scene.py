@@ -95,11 +95,11 @@ class Camera:
         object.__setattr__(self, "target", target)
         object.__setattr__(self, "up", up)
         try:
-            if isinstance(self.fov, bool | np.bool_):  # True was taken as 1 degree
-                raise TypeError
             fov = float(self.fov)
         except (TypeError, ValueError):
-            raise ValueError(f"camera fov must be a number of degrees, got {self.fov!r}") from None
+            fov = None
+        if fov is None or isinstance(self.fov, bool | np.bool_):  # True was taken as 1 degree
+            raise ValueError(f"camera fov must be a number of degrees, got {self.fov!r}")
         if not (math.isfinite(fov) and 0.0 < fov < 180.0):
             raise ValueError(f"camera fov must be in (0, 180) degrees, got {self.fov}")
         object.__setattr__(self, "fov", fov)
@@ -389,11 +389,9 @@ class Scene:
             )
         if degenerate not in ("raise", "drop"):
             raise ValueError(f"degenerate must be 'raise' or 'drop', got {degenerate!r}")
-        kind = np.asarray(vertices).dtype.kind
-        if kind in "bcmMUSV":  # complex parts and datetimes were dropped or taken as numbers
-            raise ValueError(
-                f"{name}: vertices must be (V, 3) real numbers, got {np.asarray(vertices).dtype}"
-            )
+        given = np.asarray(vertices).dtype
+        if given.kind in "bcmMUSV":  # complex parts and datetimes were dropped or taken as numbers
+            raise ValueError(f"{name}: vertices must be (V, 3) real numbers, got {given}")
         try:
             v = np.array(vertices, dtype=np.float64, copy=True)
         except (TypeError, ValueError):
