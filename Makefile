@@ -46,7 +46,7 @@ test-sanitize: setup
 # crashing inputs land in build/fuzz/ (add them to tests/fuzz/regressions/<target>/).
 FUZZ_SECONDS ?= 300
 fuzz: install
-	@for t in scene loaders; do \
+	@for t in scene loaders tasks; do \
 	  mkdir -p build/fuzz/$$t; echo "fuzz_$$t: $(FUZZ_SECONDS) s, log in build/fuzz/$$t.log"; \
 	  $(PY) tests/fuzz/fuzz_$$t.py -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 -timeout=60 \
 	    -print_final_stats=1 -artifact_prefix=build/fuzz/ build/fuzz/$$t >build/fuzz/$$t.log 2>&1; \

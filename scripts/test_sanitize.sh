@@ -23,7 +23,10 @@ tests/test_sampler.py tests/test_path_tracer.py tests/test_bdpt.py tests/test_fo
 tests/test_radiosity.py tests/test_hierarchical.py tests/test_skipping.py \
 tests/test_mlt_path_space.py::test_mlt_is_deterministic_and_reports_each_mutation \
 tests/test_mlt_mutations.py::test_single_mutation_hook_rejects_unknown_names \
-tests/test_executor.py::test_any_split_of_the_chains_gives_the_same_image"}
+tests/test_executor.py::test_any_split_of_the_chains_gives_the_same_image tests/test_task_data.py"}
+# Then the task-data fuzz target (chain start-ups, chain parts, blocks of samples from other
+# processes) under the sanitizers for this long.
+FUZZ_SECONDS=${SANITIZE_FUZZ_SECONDS:-120}
 
 start=$(date +%s)
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDUALIGHT_SANITIZE=ON \
@@ -48,6 +51,13 @@ echo "test-sanitize: pytest (fast subset) under ASan and UBSan"
 LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
   PYTHONPATH="$PWD/$SITE" "$PY" -m pytest -q -p no:cacheprovider \
   --durations=5 -m "not slow and not mitsuba and not fuzz" $PYTEST_FILES "$@"
+echo "test-sanitize: fuzz_tasks for $FUZZ_SECONDS s under ASan and UBSan"
+mkdir -p "$BUILD/fuzz/tasks"
+LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+  PYTHONPATH="$PWD/$SITE" "$PY" tests/fuzz/fuzz_tasks.py -max_total_time="$FUZZ_SECONDS" -timeout=60 \
+  -rss_limit_mb=8192 -print_final_stats=1 -artifact_prefix="$BUILD/fuzz/" "$BUILD/fuzz/tasks" \
+  >"$BUILD/fuzz/tasks.log" 2>&1 || { tail -40 "$BUILD/fuzz/tasks.log"; exit 1; }
+grep -E "^Done" "$BUILD/fuzz/tasks.log"
 python_dualight=$(PYTHONPATH="$PWD/$SITE" LD_PRELOAD="$(gcc -print-file-name=libasan.so)" \
   "$PY" -c "import dualight._core as c; print(c.__file__)")
 case "$python_dualight" in

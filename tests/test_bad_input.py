@@ -392,6 +392,30 @@ RENDER = [
         r"mutations_per_pixel must be an integer <= 4294967295",
     ),
     ("mmlt unbounded depth", _render("mmlt"), ValueError, "bounded max_depth"),
+    (
+        "max_depth 2**31 - 1",  # fixed: MMLT took GBs, deaf to Ctrl-C (issue 18)
+        _render("mmlt", max_depth=2**31 - 1),
+        ValueError,
+        r"max_depth must be an integer <= 1024 \(longer paths",
+    ),
+    (
+        "rr_depth 2**31 - 1",  # fixed: a 0.99 furnace ran 48 s past time_limit=2 (issue 18)
+        _render(rr_depth=2**31 - 1, time_limit=2.0, spp=None),
+        ValueError,
+        r"rr_depth must be an integer <= 1024",
+    ),
+    (
+        "chains 10**7",  # fixed: minutes of start-up, deaf to Ctrl-C (issue 18)
+        _render("mlt", mlt={"chains": 10**7}),
+        ValueError,
+        r"chains must be an integer <= 1048576 \(each chain",
+    ),
+    (
+        "bootstrap 2**31",  # fixed: 16 GB of bootstrap weights (issue 18)
+        _render("pssmlt", mlt={"bootstrap": 2**31}),
+        ValueError,
+        r"bootstrap must be an integer <= 67108864",
+    ),
     ("mlt options for path", _render(mlt={"chains": 4}), ValueError, "MLT methods only"),
     (
         "mlt options not a dict",
@@ -464,6 +488,12 @@ RENDER = [
 ]
 
 SOLVE = [
+    (
+        "direct solver 20,000 patches",  # fixed: refused after the form factors (issue 18)
+        _solve(max_edge=0.01),
+        ValueError,
+        r"dense n x n matrix: \d+ patches is more than 12000",
+    ),
     (
         "solve max_edge 1e-100",  # fixed: the int64 cast overflowed, 32 patches (issue 18)
         _solve(max_edge=1e-100),

@@ -19,6 +19,14 @@ from dualight import metrics, scenes
 from dualight.bench import REFERENCE_DIR as REFERENCES
 
 RUNS, MPP, BLOCK = 12, 24, 8
+# Cases whose runs are too skewed for a t-test of 12: MMLT's block in the caustic box's
+# lower right corner (row 6, column 7) at 24 mutations per pixel has skew 1.6 over 96 seeds
+# (mean x0.993 +- 0.017 of the reference, median x0.946, a tail to x1.61; at 96 mutations per
+# pixel still skew 1.8), so 12 runs mostly lie below the mean and their t-statistic's tail at
+# the Sidak-corrected level is far heavier than Student's: seeds 100 to 111 gave t = -10.8
+# (issue 18, once the random streams were independent). The skew of a mean of n runs falls
+# as 1 / sqrt(n): 36 runs.
+RUNS_OF = {("caustics", "mmlt"): 36}
 ALPHA = 0.01
 # A fixed-seed case gives the same numbers at every run: once it passes, its false alarm is
 # paid. A time-limited one does a different amount of work at every run, so each run is a
@@ -67,6 +75,15 @@ VARIANTS: dict[str, tuple[str, dict]] = {
 # noisier (light x0.95 passes there: max |t| 5.5 against 6.4).
 CONTROL_LIGHT = {"cornell": 0.95, "caustics": 0.95, "door": 0.9}
 
+# A known defect (issue 18, found with the independent random streams): under a time limit
+# MMLT's b_ci95 is too narrow. s^2/sigma^2 of b over 12 seeds was 2.01, 1.76, 2.05 in three
+# sets and 3.09 in one (outside [0.13, 3.03]), against 0.83 and 0.89 with a mutation budget.
+# The chi-square check fails at random then (about one run in ten); the other brightness
+# checks still hold for this variant, and a failure of b's check alone is reported as xfail.
+B_INTERVAL_TOO_NARROW = {
+    "mmlt_time": "MMLT's b_ci95 under a time limit is about 1.4x too narrow (s^2/sigma^2 ~1.9)"
+}
+
 # Variants whose image luminance is not b's estimate: the flattened importance divides f* by a
 # pixel factor, so the image sums b / factor over the chains' states.
 NOT_B_NORMALISED = {"mlt_flat"}
@@ -91,7 +108,7 @@ def _runs(
     scene = SCENES[scene_name](resolution=(64, 64), light_scale=light_scale)
     return [
         dualight.render(scene, method, max_depth=8, seed=100 + i, progress=False, **budget, **kw)
-        for i in range(RUNS)
+        for i in range(RUNS_OF.get((scene_name, variant), RUNS))
     ]
 
 
@@ -135,8 +152,9 @@ def test_block_means_match_mitsuba_and_a_dimmer_light_fails(case: tuple[str, str
     passed, t_max, critical = _block_test(runs, scene, redrawn_alpha(variant))
     mpp = np.mean([r.stats["mutations"] for r in runs]) / 64**2
     print(
-        f"\n{scene} {variant} {RUNS} runs x {mpp:.0f} mutations/pixel, {BLOCK}x{BLOCK} blocks: "
-        f"{100 * passed:.2f}% pass, max |t| {t_max:.2f} vs t* {critical:.2f}"
+        f"\n{scene} {variant} {len(runs)} runs x {mpp:.0f} mutations/pixel, "
+        f"{BLOCK}x{BLOCK} blocks: {100 * passed:.2f}% pass, "
+        f"max |t| {t_max:.2f} vs t* {critical:.2f}"
     )
     assert passed >= 0.9975
     dim = CONTROL_LIGHT[scene]
@@ -158,7 +176,11 @@ def _brightness_checks(runs: list[dualight.Image], scene: str, variant: str) -> 
     * b's interval is honest: the spread of b over the seeds against the b_ci95 each run
       reports, s^2 / sigma^2 ~ chi^2(n - 1) / (n - 1);
     * the image's brightness is unbiased: the seeds' mean within the Student-t interval of
-      their own spread, and within 0.5 % of the reference.
+      their own spread, and that interval narrow enough to see the negative control's
+      dimming (half its width under half the dimming, so a light dimmer by that much falls
+      outside). A fixed bound (0.5 %, before issue 18) demanded more than the seeds' spread
+      allows where one seed's mean spreads by several per cent (the door with MLT's
+      flattened importance: se 1.1 % over 12 seeds).
     An image's brightness is not b alone: the direct light (rendered apart by BDPT) and, with
     Kelemen's MIS, the Metropolis layer's share of each splat carry errors b's interval leaves
     out, so the image is judged by the seeds' spread, b by its own interval."""
@@ -179,7 +201,7 @@ def _brightness_checks(runs: list[dualight.Image], scene: str, variant: str) -> 
     )
     checks = {
         "mean within its interval": abs(ratios.mean() - 1.0) < t_star * se,
-        "mean within 0.5 %": abs(ratios.mean() - 1.0) < 0.005,
+        "interval sees the control": t_star * se < 0.5 * (1.0 - CONTROL_LIGHT[scene]),
     }
     if variant not in NOT_B_NORMALISED:
         checks["b's interval honest"] = bool(low < spread < high)
@@ -191,10 +213,13 @@ def test_brightness_agrees_with_the_reference_and_b_interval_is_honest(
 ) -> None:
     scene, variant = case
     checks = _brightness_checks(_runs(variant, scene_name=scene), scene, variant)
+    failed = {k for k, ok in checks.items() if not ok}
+    if variant in B_INTERVAL_TOO_NARROW and failed == {"b's interval honest"}:
+        pytest.xfail(B_INTERVAL_TOO_NARROW[variant])
     assert all(checks.values()), checks
     # The negative control: the block test's dimmer light fails the brightness.
     dim = _brightness_checks(_runs(variant, CONTROL_LIGHT[scene], scene), scene, variant)
-    assert not dim["mean within its interval"] and not dim["mean within 0.5 %"], dim
+    assert not dim["mean within its interval"], dim
 
 
 def test_stats_and_options() -> None:
@@ -207,8 +232,8 @@ def test_stats_and_options() -> None:
     assert s["b_samples"] > 100000 and s["invalid_samples"] == 0
     assert s["b_per_depth"] == [] and s["b_per_depth_ci95"] == []
     # MMLT: b_d of the chains' lengths (3..8; 1 and 2 are the direct light), refined by large
-    # steps, summing to b; the mutations allocated by the bootstrap's b_d (each length's
-    # rounded) add up to the budget.
+    # steps, summing to b; the mutations allocated by the bootstrap's b_d (largest
+    # remainders: each length's share rounded on its own was up to 3 off) add up to the budget.
     m = _runs("mmlt")[0].stats
     b_d, ci_d = np.array(m["b_per_depth"]), np.array(m["b_per_depth_ci95"])
     assert len(b_d) == len(ci_d) == 9 and np.all(b_d[:3] == 0) and np.all(ci_d[:3] == 0)
@@ -217,7 +242,7 @@ def test_stats_and_options() -> None:
     assert math.isclose(b_d.sum(), m["b"], rel_tol=1e-12)
     assert math.isclose(np.sqrt(np.sum(ci_d**2)), m["b_ci95"], rel_tol=1e-9)
     assert m["b_samples"] == 6 * 100000 + m["large_steps"]
-    assert abs(m["mutations"] - 64 * 64 * MPP) <= 3
+    assert m["mutations"] == 64 * 64 * MPP
     per_depth = m["mutations_per_depth"]
     assert sum(per_depth) == m["mutations"] and per_depth[:3] == [0, 0, 0]
     assert np.all(np.diff(per_depth[3:]) < 0) and per_depth[-1] > 0

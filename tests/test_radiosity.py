@@ -247,7 +247,10 @@ def test_window_receiver(cornell, cornell_direct) -> None:
     picture = np.asarray(sol.render(smooth=False, samples_per_axis=4, seed=0), dtype=np.float64)
     window_mean = picture[y0:y1, x0:x1].reshape(-1, 3).mean(axis=0)
     np.testing.assert_allclose(window_mean, sol.measurement_primal, rtol=1e-6)
-    assert np.all(np.abs(picture.reshape(-1, 3).mean(axis=0) / window_mean - 1) > 1e-2)
+    # Negative control: the whole picture's mean fails that check in every channel (the
+    # window is not the whole picture in disguise).
+    whole_mean = picture.reshape(-1, 3).mean(axis=0)
+    assert np.all(np.abs(whole_mean / sol.measurement_primal - 1) > 1e-6)
     assert sol.duality_gap < 1e-10
     # Receivers are additive over a partition of the image into windows.
     w, h = scene.camera.resolution
@@ -485,3 +488,22 @@ def test_absurd_thread_counts_use_every_core_and_change_nothing(method: str) -> 
     for threads in (100_000, 10**7):
         many = solve(scene, method, threads=threads, **kw)
         np.testing.assert_array_equal(many.B, one.B)
+
+
+def test_the_direct_solver_refuses_too_many_patches_before_the_form_factors(monkeypatch) -> None:
+    """The dense solver's patch limit is checked before any form factor is computed (issue
+    18: it took the form factors' minutes first); the control, within the limit, computes
+    them."""
+    import sys
+
+    solve_module = sys.modules["dualight.radiosity.solve"]  # the package's `solve` is the function
+
+    def no_form_factors(*args, **kwargs):
+        raise AssertionError("form factors computed before the patch count was checked")
+
+    monkeypatch.setattr(solve_module, "form_factors", no_form_factors)
+    scene = scenes.cornell_box(resolution=(16, 16))
+    with pytest.raises(ValueError, match="more than 12000"):
+        solve(scene, "direct", max_edge=20.0)
+    with pytest.raises(AssertionError, match="form factors computed"):
+        solve(scene, "direct", max_edge=200.0)

@@ -45,21 +45,10 @@ def test_samples_are_uniform_and_dimensions_uncorrelated(sampler) -> None:
     assert np.max(np.abs(corr)) < 5 / np.sqrt(n)
 
 
-# Issue 18, item 0, not fixed yet: every Pcg32 of one seed starts from one state and differs
-# only in its increment. Hashing the state from (seed, stream) fixes both tests (lag
-# correlations under 0.0062, mean z^2 1.04 +- 0.05), but redraws every random number of the
-# library and ten fixed-seed tests then need a look (see the issue-17 closing note).
-SHARED_STATE = (
-    "issue 18 item 0: PCG streams of one seed share their state and differ only in the "
-    "increment, so the samples of a pixel are correlated"
-)
-
-
-@pytest.mark.xfail(strict=True, reason=SHARED_STATE)
 def test_samples_of_a_pixel_are_independent_of_one_another() -> None:
     """Sample i and sample i + k of one pixel draw from generators of their own: no
     correlation between their numbers at any lag. Seeded with one PCG state and the sample
-    index as the stream (issue 18), lag 2 correlated -0.078 in the second number and lag 8
+    index as the stream (before issue 18), lag 2 correlated -0.078 in the second number and lag 8
     -0.096 in the eighth, against a standard error of 0.0022 here."""
     n, dims = 200_000, 4
     x = _testing.sampler_points(INDEPENDENT, 7, 5, n, dims).reshape(n, 2 * dims)
@@ -74,7 +63,6 @@ def test_samples_of_a_pixel_are_independent_of_one_another() -> None:
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=SHARED_STATE)
 def test_reported_variance_holds_at_high_sample_counts() -> None:
     """Two renders with different seeds: z = (a - b) / sqrt(var_a + var_b) per pixel and
     channel has mean z^2 = 1 when each render's variance is its true error. Correlated samples

@@ -256,7 +256,9 @@ def test_hierarchical_furnace_says_it_did_not_converge(rho: float) -> None:
 FURNACE_BUDGET = {"path": {"spp": 16}, "light": {"spp": 64}, "bdpt": {"spp": 8}, "mlt": {}}
 
 
-def _furnace_means(method: str, rho: float, emission: float, max_depth: int) -> list[float]:
+def _furnace_means(
+    method: str, rho: float, emission: float, max_depth: int, seeds: int = 4
+) -> list[float]:
     scene = scenes.furnace(rho, emission, (16, 16))
     return [
         float(
@@ -265,7 +267,7 @@ def _furnace_means(method: str, rho: float, emission: float, max_depth: int) -> 
                 dtype=np.float64,
             )
         )
-        for seed in range(4)
+        for seed in range(seeds)
     ]
 
 
@@ -288,19 +290,25 @@ def test_high_albedo_furnace_conserves_energy(method: str) -> None:
 @pytest.mark.parametrize("method", ["path", "light"])
 def test_high_albedo_furnace_unbounded(method: str) -> None:
     """rho = 0.97 with unbounded paths (Russian roulette from vertex 5, survival
-    ``min(max beta, 0.95)``): radiance Le / (1 - rho) = 33.3 everywhere; mean of 4 seeds within
-    5 % (measured: path x1.008, one seed at x1.10; light x0.994). Control: rho = 0.96
-    (radiance 25) is outside.
+    ``min(max beta, 0.95)``): radiance Le / (1 - rho) = 33.3 everywhere. The image means of 16
+    seeds must hold 1 / (1 - rho) within Student's t interval of their own spread (level
+    0.1 %): one seed's mean spreads by 5.7 % for path tracing (heavy-tailed: seeds 0 to 15 from
+    x0.96 to x1.18) and 2 % for light tracing, so the old check of 4 seeds within a fixed 5 %
+    failed one time in ten (issue 18). Control: rho = 0.96 (radiance 25) fails the same test.
 
     Why not rho = 0.999 here: the survival cap 0.95 (Mitsuba's) makes the roulette weights grow
     as (rho / 0.95)^k, so for rho > sqrt(0.95) = 0.975 the estimator's variance is infinite
     and a finite run is far below the mean with high probability (measured at rho = 0.999,
     4 x 16 spp: path 465, light 182 against 1000). Unbiased, but useless there: bound
     ``max_depth`` (as the test above) for such furnaces."""
-    mean = float(np.mean(_furnace_means(method, 0.97, 1.0, -1)))
-    assert abs(mean * 0.03 - 1) < 0.05, mean
-    dim = float(np.mean(_furnace_means(method, 0.96, 1.0, -1)))
-    assert abs(dim * 0.03 - 1) > 0.05, dim
+    t_star = metrics.student_t_critical(15, 1e-3)
+
+    def t(rho: float) -> float:
+        ratios = np.array(_furnace_means(method, rho, 1.0, -1, seeds=16)) * 0.03
+        return abs(ratios.mean() - 1) / (ratios.std(ddof=1) / 4.0)
+
+    assert t(0.97) < t_star, (t(0.97), t_star)
+    assert t(0.96) > t_star
 
 
 # 2. Scaled scenes ------------------------------------------------------------------------------
@@ -625,11 +633,39 @@ def _grazing_light_box(light_scale: float = 1.0) -> dualight.Scene:
 @pytest.mark.parametrize("method", ["light", "bdpt", "mlt"])
 def test_grazing_illumination(method: str) -> None:
     """Light leaving an emitter and reaching a floor at cosines ~1e-3: every method agrees with
-    the path tracer within noise (MLT: image means within 5 %); controls: a dimmer light."""
+    the path tracer within noise; controls: a dimmer light.
+
+    MLT's image carries no variance, and here it is the direct light alone (b = 0: only the
+    floor reflects, so no path of three segments or more), rendered apart by BDPT at 8 spp: one
+    seed's image mean spreads by 6 % (seeds 1 to 8: x0.92 to x1.09), so one seed within 5 %
+    failed at random once the random streams were independent (issue 18). MLT is judged by 16
+    seeds' mean within Student's t interval of their spread and the reference's error."""
     reference = _render(_grazing_light_box(), "path", seed=5, spp=256)
     assert float(np.mean(reference)) > 0
+    if method == "mlt":
+        assert _mlt_seeds_agree(_grazing_light_box(), reference)
+        assert not _mlt_seeds_agree(_grazing_light_box(0.9), reference)
+        return
     image = _render(_grazing_light_box(), method, seed=1)
     ok, numbers = _agree(image, reference)
     assert ok, numbers
-    dim = _render(_grazing_light_box(0.8 if method == "mlt" else 0.9), method, seed=1)
+    dim = _render(_grazing_light_box(0.9), method, seed=1)
     assert not _agree(dim, reference)[0]
+
+
+def _mlt_seeds_agree(scene: dualight.Scene, reference: dualight.Image, seeds: int = 16) -> bool:
+    """The image means of MLT with seeds 1 to ``seeds`` against the reference's: their mean
+    within Student's t interval (level 0.1 %) of the seeds' spread and the reference's own
+    standard error."""
+    ratios = np.array(
+        [
+            float(np.mean(_render(scene, "mlt", seed=s), dtype=np.float64))
+            for s in range(1, seeds + 1)
+        ]
+    )
+    ref_mean = float(np.mean(reference, dtype=np.float64))
+    ref_se = math.sqrt(float(np.sum(np.mean(reference.variance, axis=2), dtype=np.float64)))
+    ref_se /= reference.shape[0] * reference.shape[1]
+    ratios /= ref_mean
+    se = math.sqrt(ratios.var(ddof=1) / seeds + (ref_se / ref_mean) ** 2)
+    return abs(ratios.mean() - 1) < metrics.student_t_critical(seeds - 1, 1e-3) * se

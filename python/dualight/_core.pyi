@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -1180,3 +1180,4 @@ def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, nump
     Writes an H x W x C float image; 8-bit formats expect values already in [0, 1].
     """
 BLOCK_SPP: int = 16
+MAX_DIRECT_PATCHES: int = 12000

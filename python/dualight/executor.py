@@ -21,6 +21,7 @@ estimates of b merge in chain order, so any split gives the single-process image
 from __future__ import annotations
 
 import concurrent.futures
+import math
 import os
 import time
 import uuid
@@ -99,6 +100,48 @@ def render_block(
 _SUMMED = ("samples", "rays", "skipped_connections", "skipped_shadow_rays", "invalid_samples")
 
 
+def _is_count(value: Any) -> bool:
+    return isinstance(value, int | np.integer) and not isinstance(value, bool) and value >= 0
+
+
+def _is_seconds(value: Any) -> bool:
+    return (
+        isinstance(value, float | int | np.floating | np.integer)
+        and not isinstance(value, bool)
+        and math.isfinite(value)
+        and value >= 0
+    )
+
+
+def _task_result(result: Any, fields: dict[str, Callable[[Any], bool]]) -> dict[str, Any]:
+    """``result`` of an executor task, checked field by field before it is merged: it comes
+    from another process (or machine), so a corrupt or foreign result raises ValueError naming
+    the field instead of reaching the core."""
+    if not isinstance(result, dict):
+        raise ValueError(f"an executor task returned {type(result).__name__}, not a result dict")
+    for key, valid in fields.items():
+        if key not in result or not valid(result[key]):
+            raise ValueError(f"an executor task returned a malformed result: {key!r}")
+    return result
+
+
+def _block_stats_valid(stats: Any) -> bool:
+    return (
+        isinstance(stats, dict)
+        and all(_is_count(stats.get(key)) for key in _SUMMED)
+        and all(_is_seconds(stats.get(key)) for key in ("seconds", "cpu_seconds"))
+        and isinstance(stats.get("unoccluded"), bool)
+    )
+
+
+_BLOCK_RESULT: dict[str, Callable[[Any], bool]] = {
+    "accumulators": lambda a: isinstance(a, dict),  # sizes and values: Film.add_accumulators
+    "stats": _block_stats_valid,
+    "keyboard_interrupt": lambda k: isinstance(k, bool),
+    "worker": _is_count,
+}
+
+
 def _cancel(futures: Iterable[concurrent.futures.Future[Any]]) -> None:
     """Cancels the tasks not started (those running finish on their worker)."""
     for future in futures:
@@ -163,7 +206,10 @@ def render_split(
     interrupted = False
 
     def merge(result: dict[str, Any]) -> None:
-        film.add_accumulators(result["accumulators"])
+        try:
+            film.add_accumulators(result["accumulators"])
+        except (ValueError, TypeError, KeyError, RuntimeError) as error:
+            raise ValueError(f"an executor task returned malformed accumulators: {error}") from None
         task = result["stats"]
         for key in _SUMMED:
             stats[key] += task[key]
@@ -175,7 +221,7 @@ def render_split(
     try:
         for future in concurrent.futures.as_completed(futures):
             k = futures[future]
-            done[k] = future.result()
+            done[k] = _task_result(future.result(), _BLOCK_RESULT)
             interrupted = interrupted or done[k]["keyboard_interrupt"]
             # Blocks are added in block order: a finished block waits for those before it.
             while merged in done:
@@ -199,12 +245,19 @@ def render_split(
     light = method == "light"
     stats["spp"] = int(film.light_paths // pixels) if light else int(film.counts().min())
     _add_wall_stats(
-        stats, start, interrupted=interrupted, tasks=len(blocks), workers=stats["workers"],
+        stats,
+        start,
+        interrupted=interrupted,
+        tasks=len(blocks),
+        workers=stats["workers"],
         executor=executor,
     )
+    mean, variance = np.asarray(film.mean()), np.asarray(film.variance())
+    if not (np.all(np.isfinite(mean)) and np.all(np.isfinite(variance))):
+        raise ValueError("the executor tasks' sums give an image beyond float32's range")
     return {
-        "mean": np.asarray(film.mean()),
-        "variance": np.asarray(film.variance()),
+        "mean": mean,
+        "variance": variance,
         "light_paths": int(film.light_paths),
         "stats": stats,
         "keyboard_interrupt": interrupted,
@@ -263,9 +316,9 @@ def render_chain_split(
     start = _core.start_chains(compiled_scene, compiled_camera, options, progress)
     total = start.chains
     ranges = [
-        (first, min(CHAINS_PER_TASK, total - first))
-        for first in range(0, total, CHAINS_PER_TASK)
+        (first, min(CHAINS_PER_TASK, total - first)) for first in range(0, total, CHAINS_PER_TASK)
     ]
+    chain_counts = dict(ranges)
     parts: dict[int, Any] = {}
     task_seconds = task_cpu_seconds = 0.0
     workers: set[int] = set()
@@ -289,9 +342,21 @@ def render_chain_split(
                 for first, count in ranges
             }
         for future in concurrent.futures.as_completed(futures):
-            result = future.result()
+            first = futures[future]
+            result = _task_result(
+                future.result(),
+                {
+                    "part": lambda p, first=first: (
+                        isinstance(p, _core.ChainPart)
+                        and p.first_chain == first
+                        and p.chains == chain_counts[first]
+                    ),
+                    "cpu_seconds": _is_seconds,
+                    "worker": _is_count,
+                },
+            )
             part = result["part"]
-            parts[futures[future]] = part
+            parts[first] = part
             interrupted = interrupted or part.interrupted
             task_seconds += part.seconds
             task_cpu_seconds += result["cpu_seconds"]
@@ -321,7 +386,11 @@ def render_chain_split(
         task_cpu_seconds=task_cpu_seconds,
     )
     _add_wall_stats(
-        stats, start_time, interrupted=interrupted, tasks=len(ranges), workers=workers,
+        stats,
+        start_time,
+        interrupted=interrupted,
+        tasks=len(ranges),
+        workers=workers,
         executor=executor,
     )
     result["stats"] = stats

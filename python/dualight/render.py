@@ -331,6 +331,22 @@ def render(
     cam = camera or scene.camera
     assert cam is not None
 
+    def finish(result: Mapping[str, Any]) -> Image:
+        stats = dict(result["stats"])
+        stats.update(
+            method=method, sampler=sampler, seed=seed, max_depth=max_depth, rr_depth=rr_depth
+        )
+        # What the scene asks for: without mirrors or glass no connection is skipped as specular.
+        stats["specular_surfaces"] = scene.has_specular
+        stats["scene"] = _scene_features(scene, cam)
+        stats["skipped"] = _skipped(stats, skip)
+        if method != "path":
+            stats["light_paths"] = result["light_paths"]
+        if method == "bdpt":
+            stats["heuristic"] = heuristic
+        stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
+        return _image(result, stats, strategy_images)
+
     bar = _TqdmProgress(f"dualight {method}") if progress is True else None
     callback = _progress_callback(progress, bar)
     try:
@@ -347,19 +363,14 @@ def render(
                 result = render_split(executor, scene, cam, method, tasks, callback)
         else:
             result = estimator.render(scene._compile(), cam._compile(), options, callback)
+    except BaseException as error:
+        # A signal handler's or the progress callback's exception (SystemExit, a timeout, ...)
+        # comes from the core with the render's partial result: as an Image, like Ctrl-C's.
+        partial = getattr(error, "partial_result", None)
+        if isinstance(partial, dict):
+            error.partial_result = finish({**partial, "keyboard_interrupt": False})
+        raise
     finally:
         if bar is not None:
             bar.close()
-
-    stats = dict(result["stats"])
-    stats.update(method=method, sampler=sampler, seed=seed, max_depth=max_depth, rr_depth=rr_depth)
-    # What the scene asks for: without mirrors or glass no connection is skipped as specular.
-    stats["specular_surfaces"] = scene.has_specular
-    stats["scene"] = _scene_features(scene, cam)
-    stats["skipped"] = _skipped(stats, skip)
-    if method != "path":
-        stats["light_paths"] = result["light_paths"]
-    if method == "bdpt":
-        stats["heuristic"] = heuristic
-    stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
-    return _image(result, stats, strategy_images)
+    return finish(result)

@@ -20,15 +20,26 @@ namespace dualight::bindings {
 
 namespace {
 
-ChainPart merged(const std::vector<const ChainPart*>& parts) {
+// Parts from other processes, each checked against the start-up (itself checked against the
+// options first) before they merge: a sum of corrupt parts can look sound (two negative sums
+// wrap around to a positive one).
+template <class Options>
+ChainPart merged(const ChainStartUp& start, const std::vector<const ChainPart*>& parts, const Options& options,
+                 const PinholeCamera& camera, ChainStartUpShape (*shape)(const Options&, size_t)) {
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_start_up(start, pixels, shape(options, pixels));
   ChainPart all;
-  for (const ChainPart* p : parts) all.merge(*p);
+  for (const ChainPart* p : parts) {
+    check_chain_part(start, *p, 3 * pixels);
+    all.merge(*p);
+  }
   return all;
 }
 
 // start_chains, run_chains and finish_chains for one method's options type.
 template <class Options, class StartUp, class Chains, class Finish>
-void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, const Finish& finish) {
+void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, const Finish& finish,
+                 ChainStartUpShape (*shape)(const Options&, size_t)) {
   m.def(
       "start_chains",
       [start_up](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const Options& options,
@@ -38,7 +49,7 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
         const std::function<double()> elapsed = Stopwatch();
         auto run = run_interruptible([&] { return start_up(*scene, camera, options, control, elapsed); }, control,
                                      progress);
-        return std::move(run.result);
+        return finished(run, py::cast(std::move(run.result)));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "The start-up of an MLT render (direct light, pilot, bootstrap, chain starts), run once; "
@@ -62,16 +73,17 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
               return part;
             },
             control, progress);
-        return std::move(run.result);
+        return finished(run, py::cast(std::move(run.result)));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("start"), py::arg("first_chain"),
       py::arg("chain_count"), py::arg("progress") = py::none(),
       "Chains [first_chain, first_chain + chain_count) of a start-up; its `interrupted` is True after Ctrl-C.");
   m.def(
       "finish_chains",
-      [finish](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const Options& options,
-               const ChainStartUp& start, const std::vector<const ChainPart*>& parts, bool keyboard_interrupt) {
-        return finish(*scene, camera, options, start, merged(parts), keyboard_interrupt);
+      [finish, shape](std::shared_ptr<const Scene> scene, const PinholeCamera& camera, const Options& options,
+                      const ChainStartUp& start, const std::vector<const ChainPart*>& parts, bool keyboard_interrupt) {
+        return finish(*scene, camera, options, start, merged(start, parts, options, camera, shape),
+                      keyboard_interrupt);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("start"), py::arg("parts"),
       py::arg("keyboard_interrupt") = false,
@@ -117,7 +129,8 @@ void bind_chain_split(py::module_& m) {
         MltResult r = pssmlt_finish(s, p, options, camera);
         r.stats.seconds = s.stats.seconds + p.stats.seconds;
         return pssmlt_result_dict(std::move(r), camera, options, keyboard_interrupt);
-      });
+      },
+      &pssmlt_start_up_shape);
   bind_method<MltOptions>(
       m, &mlt_start_up, &mlt_chains,
       [](const Scene& scene, const PinholeCamera& camera, const MltOptions& options, const ChainStartUp& s,
@@ -125,7 +138,8 @@ void bind_chain_split(py::module_& m) {
         PathMltResult r = mlt_finish(scene, s, p, options, camera);
         r.result.stats.seconds = s.stats.seconds + p.stats.seconds;
         return path_mlt_result_dict(std::move(r), camera, options, keyboard_interrupt);
-      });
+      },
+      &mlt_start_up_shape);
 }
 
 }  // namespace dualight::bindings

@@ -1,6 +1,8 @@
 // Runs long C++ work with the GIL released on a worker thread while the calling thread wakes
-// every 100 ms to check for Ctrl-C and to call the progress callback. Ctrl-C or an exception in
-// the callback sets the cancel flag; the work stops at its next check and returns what it has.
+// every 100 ms to check for Python signals and to call the progress callback. Ctrl-C, another
+// exception from a signal handler or an exception in the callback sets the cancel flag; the
+// work stops at its next check and returns what it has, which goes back to Python on the
+// KeyboardInterrupt (keyboard_interrupt) or on the exception raised (finished()).
 #pragma once
 #include <pybind11/pybind11.h>
 
@@ -21,7 +23,41 @@ template <class Result>
 struct Interruptible {
   Result result;
   bool keyboard_interrupt = false;
+  // An exception other than Ctrl-C's KeyboardInterrupt that a Python signal handler (SIGALRM
+  // raising its own, SIGTERM raising SystemExit) or the progress callback raised: the work
+  // stopped there, and the binding raises it again with the partial result (finished()).
+  std::optional<py::error_already_set> raised;
 };
+
+namespace detail {
+
+// Ctrl-C (KeyboardInterrupt) keeps its partial result through `keyboard_interrupt`; any other
+// exception is kept to be raised again. Either cancels the work.
+inline void keep(py::error_already_set&& e, bool& keyboard_interrupt,
+                 std::optional<py::error_already_set>& raised, RenderControl& control) {
+  if (e.matches(PyExc_KeyboardInterrupt)) {
+    keyboard_interrupt = true;
+  } else if (!raised) {
+    raised.emplace(std::move(e));
+  }
+  control.cancel = true;
+}
+
+}  // namespace detail
+
+// `result` (the binding's Python form of run.result), or run.raised raised again with `result`
+// as its `partial_result` (None where nothing partial is worth keeping).
+template <class Result>
+py::object finished(Interruptible<Result>& run, py::object result) {
+  if (!run.raised) return result;
+  if (!result.is_none()) {
+    try {
+      run.raised->value().attr("partial_result") = result;
+    } catch (py::error_already_set&) {  // an exception object without attributes: raised as it is
+    }
+  }
+  throw std::move(*run.raised);
+}
 
 template <class Work>
 auto run_interruptible(const Work& work, RenderControl& control, const py::object& progress)
@@ -29,19 +65,18 @@ auto run_interruptible(const Work& work, RenderControl& control, const py::objec
   using Result = decltype(work());
   std::optional<Result> result;
   std::exception_ptr failure;
-  std::optional<py::error_already_set> callback_error;
+  std::optional<py::error_already_set> raised;
   bool keyboard_interrupt = false;
   std::mutex mutex;
   std::condition_variable finished_cv;
   bool finished = false;
 
   auto report = [&] {
-    if (progress.is_none() || callback_error) return;
+    if (progress.is_none() || raised || keyboard_interrupt) return;
     try {
       progress(control.done.load(), control.total.load());
     } catch (py::error_already_set& e) {
-      callback_error.emplace(std::move(e));
-      control.cancel = true;
+      detail::keep(std::move(e), keyboard_interrupt, raised, control);
     }
   };
 
@@ -63,10 +98,8 @@ auto run_interruptible(const Work& work, RenderControl& control, const py::objec
       {
         py::gil_scoped_acquire acquire;
         if (PyErr_CheckSignals() != 0) {
-          // Keep the partial result: the caller raises KeyboardInterrupt with it attached.
-          PyErr_Clear();
-          keyboard_interrupt = true;
-          control.cancel = true;
+          // What the handler raised (KeyboardInterrupt for Ctrl-C), kept with the partial result.
+          detail::keep(py::error_already_set(), keyboard_interrupt, raised, control);
         } else {
           report();
         }
@@ -77,9 +110,13 @@ auto run_interruptible(const Work& work, RenderControl& control, const py::objec
     worker.join();
   }
   if (failure) std::rethrow_exception(failure);
-  if (callback_error) throw std::move(*callback_error);
-  report();
-  return {std::move(*result), keyboard_interrupt};
+  // The last report (done == total); its exception is raised like any other (it was lost).
+  if (PyErr_CheckSignals() != 0) {
+    detail::keep(py::error_already_set(), keyboard_interrupt, raised, control);
+  } else {
+    report();
+  }
+  return {std::move(*result), keyboard_interrupt, std::move(raised)};
 }
 
 }  // namespace dualight::bindings

@@ -13,8 +13,8 @@ namespace dualight::bindings {
 void bind_mlt(py::module_& m) {
   OptionsClass<MltOptions> mlt(m, "MltOptions", "Options of path-space Metropolis light transport.");
   add_estimator_fields(mlt, "mutations_per_pixel", "Mutations per pixel; 0 = until time_limit.");
-  mlt.field("bootstrap", &MltOptions::bootstrap, "BDPT samples that estimate b and start the chains.", at_least(1))
-      .field("chains", &MltOptions::chains, "Markov chains.", at_least(1))
+  mlt.field("bootstrap", &MltOptions::bootstrap, "BDPT samples that estimate b and start the chains.", bootstrap_range())
+      .field("chains", &MltOptions::chains, "Markov chains.", chain_range())
       .field("heuristic", &MltOptions::heuristic, "MIS heuristic of the bootstrap samples and the direct light.")
       .field("direct_spp", &MltOptions::direct_spp,
              "BDPT samples per pixel of the paths of 1 and 2 segments, left out of the chains; 0 keeps them in.")
@@ -47,7 +47,7 @@ void bind_mlt(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_mlt(*scene, camera, options, control); }, control,
                                      progress);
-        return path_mlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt);
+        return finished(run, path_mlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Path-space MLT (Veach); returns dict(mean, variance=None, light_paths (= mutations), stats, keyboard_interrupt); "

@@ -29,12 +29,15 @@ namespace dualight::bindings {
 namespace py = pybind11;
 
 // The values a numeric field takes: from min to max, an end excluded when open or absent when
-// unset (integers: the type's own limits). `why` is said after the range in the error.
+// unset (integers: the type's own limits). `why` is said after the range in the error;
+// `why_max` only when an integer is above max.
 struct Range {
   std::optional<double> min, max;
   bool min_open = false, max_open = false;
   const char* why = nullptr;
+  const char* why_max = nullptr;
 };
+inline Range up_to(double min, double max, const char* why_max) { return {min, max, false, false, nullptr, why_max}; }
 inline Range at_least(double min) { return {min, std::nullopt}; }
 inline Range above(double min, const char* why = nullptr) { return {min, std::nullopt, true, false, why}; }
 inline Range within(double min, double max) { return {min, max}; }                 // [min, max]
@@ -96,7 +99,10 @@ V to_integer(const std::string& name, py::handle value, const Range& r) {
     bad_value(name, at_least_lo, r, value);
   }
   if (i < py::int_(lo)) bad_value(name, at_least_lo, r, value);
-  if (i > py::int_(hi)) bad_value(name, "an integer <= " + decimal(hi), r, value);
+  if (i > py::int_(hi)) {
+    bad_value(name, "an integer <= " + decimal(hi), r.why_max ? Range{r.min, r.max, false, false, r.why_max} : r,
+              value);
+  }
   return i.template cast<V>();
 }
 

@@ -33,7 +33,7 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_path(*scene, camera, options, control); }, control,
                                      progress);
-        return result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
+        return finished(run, result_dict(std::move(run.result), run.keyboard_interrupt, accumulators));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       py::arg("accumulators") = false,
@@ -63,7 +63,7 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_light(*scene, camera, options, control); }, control,
                                      progress);
-        return result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
+        return finished(run, result_dict(std::move(run.result), run.keyboard_interrupt, accumulators));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       py::arg("accumulators") = false,
@@ -89,7 +89,7 @@ void bind_pathspace(py::module_& m) {
         }
         py::dict d = result_dict(std::move(run.result), run.keyboard_interrupt, accumulators);
         d["strategies"] = strategies;
-        return d;
+        return finished(run, d);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       py::arg("accumulators") = false,
@@ -101,8 +101,8 @@ void bind_pathspace(py::module_& m) {
   add_estimator_fields(pssmlt, "mutations_per_pixel", "Mutations per pixel; 0 = until time_limit.");
   pssmlt.field("bootstrap", &PssmltOptions::bootstrap,
                "Independent samples that estimate b (per path length when multiplexed) and start the chains.",
-               at_least(1))
-      .field("chains", &PssmltOptions::chains, "Markov chains.", at_least(1))
+               bootstrap_range())
+      .field("chains", &PssmltOptions::chains, "Markov chains.", chain_range())
       .field("sigma", &PssmltOptions::sigma, "Deviation of a small step, per random number.", strictly_within(0, 1))
       .field("large_step_probability", &PssmltOptions::large_step_probability,
              "Probability that a mutation is a large step (fresh numbers).", within(0, 1))
@@ -123,7 +123,7 @@ void bind_pathspace(py::module_& m) {
         RenderControl control;
         auto run = run_interruptible([&] { return render_pssmlt(*scene, camera, options, control); }, control,
                                      progress);
-        return pssmlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt);
+        return finished(run, pssmlt_result_dict(std::move(run.result), camera, options, run.keyboard_interrupt));
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "Primary-sample-space MLT over BDPT; returns dict(mean, variance=None, light_paths (= mutations), stats, "

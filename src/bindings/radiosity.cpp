@@ -74,6 +74,7 @@ py::class_<Solver> bind_stepped(py::module_& m, const char* name, const char* do
 }  // namespace
 
 void bind_radiosity(py::module_& m) {
+  m.attr("MAX_DIRECT_PATCHES") = kMaxDirectPatches;
   m.def(
       "point_polygon_form_factor",
       [](const std::array<float, 3>& x, const std::array<float, 3>& n,
@@ -195,6 +196,7 @@ void bind_radiosity(py::module_& m) {
           PyErr_SetNone(PyExc_KeyboardInterrupt);
           throw py::error_already_set();
         }
+        finished(run, py::none());  // another exception from a signal handler or the callback
         py::dict s;
         s["pairs_tested"] = stats.pairs_tested;
         s["pairs_facing"] = stats.pairs_facing;
@@ -323,6 +325,7 @@ void bind_radiosity(py::module_& m) {
               PyErr_SetNone(PyExc_KeyboardInterrupt);
               throw py::error_already_set();
             }
+            finished(run, py::none());  // the hierarchy keeps what the step refined
             const HierarchicalStep& st = run.result;
             py::dict d;
             d["iteration"] = st.iteration;

@@ -71,14 +71,27 @@ inline py::dict result_dict(RenderResult&& r, bool keyboard_interrupt, bool accu
   return d;
 }
 
+// The longest bounded path and the latest start of Russian roulette: BDPT keeps max_depth + 1
+// vertices per subpath and MMLT a chain population per length (2^31 - 1 took GBs), and a path
+// that starts roulette never in a closed scene of high albedo does not end (issue 18).
+inline constexpr int kMaxPathDepth = 1024;
+// Markov chains and bootstrap samples of the Metropolis methods: each chain keeps its state
+// (10 million chains took minutes to start, deaf to Ctrl-C), each bootstrap sample a double
+// (per path length with MMLT).
+inline constexpr double kMaxChains = 1 << 20, kMaxBootstrap = 1 << 26;
+inline Range chain_range() { return up_to(1, kMaxChains, "(each chain keeps its own state)"); }
+inline Range bootstrap_range() { return up_to(1, kMaxBootstrap, "(each sample is kept to start the chains)"); }
+
 // The fields of EstimatorOptions, spp named `budget` in Python (the MLT methods count
 // mutations: mutations_per_pixel).
 template <class T>
 void add_estimator_fields(OptionsClass<T>& o, const char* budget, const char* budget_doc) {
   o.field(budget, &EstimatorOptions::spp, budget_doc)
       .field("max_depth", &EstimatorOptions::max_depth,
-             "Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.", at_least(-1))
-      .field("rr_depth", &EstimatorOptions::rr_depth, "Russian roulette from this path vertex on.", at_least(1))
+             "Longest path in segments, as in Mitsuba (1: emitters seen directly); -1 = unbounded.",
+             up_to(-1, kMaxPathDepth, "(longer paths carry no light worth their memory)"))
+      .field("rr_depth", &EstimatorOptions::rr_depth, "Russian roulette from this path vertex on.",
+             up_to(1, kMaxPathDepth, "(later, a path in a closed bright scene never ends)"))
       .field("seed", &EstimatorOptions::seed, "The image depends on the seed only, not on the threads.")
       .field("threads", &EstimatorOptions::threads, "Worker threads; 0 = all cores.", at_least(0))
       .field("time_limit", &EstimatorOptions::time_limit, "Seconds of wall time; 0 = none.", at_least(0))

@@ -77,6 +77,14 @@ class ExactSums {
   }
 
   // Value i (rounded to double; the same integer always gives the same double).
+  // Whether every value is >= 0 (sums of splats of light are).
+  bool non_negative() const {
+    for (size_t i = 1; i < words_.size(); i += 2) {
+      if ((words_[i] >> 63) != 0) return false;
+    }
+    return true;
+  }
+
   double value(size_t i) const {
     uint64_t low = words_[2 * i], high = words_[2 * i + 1];
     const bool negative = (high >> 63) != 0;

@@ -16,9 +16,13 @@ constexpr uint64_t hash_combine(uint64_t a, uint64_t b) { return mix64(a ^ mix64
 
 class Pcg32 {
  public:
-  Pcg32(uint64_t seed, uint64_t stream) : inc_((stream << 1u) | 1u) {
-    next_uint();
-    state_ += seed;
+  // The state is hashed from (seed, stream), not only the increment: PCG streams that start
+  // from one state and differ in the increment are correlated (the sequences are affine images
+  // of one another). Seeded as pbrt-v4 and O'Neill's reference code do (state = seed + inc,
+  // stream in the increment), the samples of a pixel, which differ only in the stream, were
+  // correlated by about 3e-5 per pair: at 8192 spp on the Cornell box the reported variance
+  // of a pixel was 25 % short of its true error (issue 18).
+  Pcg32(uint64_t seed, uint64_t stream) : state_(hash_combine(seed, stream)), inc_((stream << 1u) | 1u) {
     next_uint();
   }
 
@@ -34,7 +38,7 @@ class Pcg32 {
   float next_float() { return static_cast<float>(next_uint() >> 8) * 0x1p-24f; }
 
  private:
-  uint64_t state_ = 0;
+  uint64_t state_;
   uint64_t inc_;
 };
 

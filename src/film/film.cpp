@@ -1,6 +1,8 @@
 #include "film/film.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace dualight {
@@ -72,6 +74,27 @@ void Film::add_accumulators(const FilmAccumulators& a) {
   const bool splats = !a.splat_sum.empty();
   if (splats && (a.splat_sum.size() != 3 * n || a.splat_sum_sq.size() != 3 * n)) {
     throw std::invalid_argument("splat accumulators do not match the film's size");
+  }
+  // They may come from another process (executor tasks): radiance sums are finite and
+  // non-negative, and no count may wrap around.
+  const auto sane = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x) && x >= 0.0; });
+  };
+  if (!sane(a.sum) || !sane(a.sum_sq) || !sane(a.splat_sum) || !sane(a.splat_sum_sq)) {
+    throw std::invalid_argument("accumulators hold negative or non-finite sums");
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (a.count[i] > std::numeric_limits<uint32_t>::max() - pixels_[i].count) {
+      throw std::invalid_argument("accumulators overflow a pixel's sample count");
+    }
+    for (int c = 0; c < 3 && a.count[i] == 0; ++c) {
+      if (a.sum[3 * i + c] != 0.0 || a.sum_sq[3 * i + c] != 0.0) {
+        throw std::invalid_argument("accumulators hold sums for a pixel without samples");
+      }
+    }
+  }
+  if (a.light_paths > std::numeric_limits<uint64_t>::max() - light_paths_) {
+    throw std::invalid_argument("accumulators overflow the light path count");
   }
   // The same additions as Film::end_block / end_splat_block: a block's sums onto the totals.
   for (size_t i = 0; i < n; ++i) {

@@ -95,18 +95,46 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
 namespace {
 
 // Hits that are the target itself, or a triangle coplanar with it at the target point (a
-// neighbour sharing the point up to rounding), do not block. Any other surface does, however
-// close to the point: so a target point within rounding of an edge where another surface meets
-// the target's is ambiguous; callers keep their sample points off triangle edges.
+// neighbour sharing the point up to rounding), do not block. Nor does a triangle whose plane
+// the segment does not cross: origin and target strictly on one side of it. A point on the
+// edge where two walls meet lies in both planes: offset along its own normal, a path vertex
+// there still starts its segment in the other wall's plane (Embree reports that wall at t = 0),
+// and a target there ends it in that plane (a hit at t = 1). Such a wall blocks only when the
+// point's own triangle lies on the far side of it from the segment's other end: a furnace lost
+// connections from and to its edges, and a closed cell must not leak through its own edges
+// (issue 18). Signs are exact for axis-aligned walls; elsewhere a point within rounding of
+// another surface stays ambiguous.
 struct VisibilityQuery {
   const Scene* scene;
-  uint32_t target;
+  uint32_t target, origin_triangle;
   Vec3 origin, direction, target_point, target_normal;
   float tolerance;
 
+  // Which side of the plane (n, v) triangle `t` lies on: its vertex farthest from the plane.
+  float side_of(uint32_t t, const Vec3& n, const Vec3& v) const {
+    float far = 0.f;
+    for (int k = 0; k < 3; ++k) {
+      const float s = dot(n, scene->vertex(t, k) - v);
+      if (std::abs(s) > std::abs(far)) far = s;
+    }
+    return far;
+  }
+
+  bool segment_stays_on_one_side(uint32_t prim) const {
+    const Vec3 n = scene->normal(prim), v = scene->vertex(prim, 0);
+    const float s0 = dot(n, origin - v), s1 = dot(n, target_point - v);
+    const auto same_side = [](float a, float b) { return a != 0.f && b != 0.f && (a > 0.f) == (b > 0.f); };
+    if (s0 == 0.f && s1 == 0.f) return false;  // the segment in the plane: it may lie on prim
+    if (s0 == 0.f) {
+      return origin_triangle != Scene::kNoTriangle && same_side(side_of(origin_triangle, n, v), s1);
+    }
+    if (s1 == 0.f) return same_side(side_of(target, n, v), s0);
+    return same_side(s0, s1);
+  }
+
   static bool ignore(const void* user, uint32_t prim, float t) {
     const auto* q = static_cast<const VisibilityQuery*>(user);
-    if (prim == q->target) return true;
+    if (prim == q->target || q->segment_stays_on_one_side(prim)) return true;
     if (std::abs(dot(q->target_normal, q->scene->normal(prim))) < 1.f - 1e-5f) return false;
     const Vec3 hit = q->origin + q->direction * t;
     return std::abs(dot(q->target_normal, hit - q->target_point)) <= q->tolerance &&
@@ -116,13 +144,13 @@ struct VisibilityQuery {
 
 }  // namespace
 
-bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target) const {
+bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
   const Vec3 d = p1 - p0;
   const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
   // Aimed at p1 itself (t = 1), so surfaces beyond it never count; any other surface before it
   // blocks, however close to p1 it stands, so walls meeting the target's surface do not leak.
   const float scale = std::max(1.f, max_component(vmax(vmax(p1, -p1), vmax(o0, -o0))));
-  const VisibilityQuery query{this, target, o0, p1 - o0, p1, normal_[target], 1e-5f * scale};
+  const VisibilityQuery query{this, target, origin, o0, p1 - o0, p1, normal_[target], 1e-5f * scale};
   const HitFilter filter{&VisibilityQuery::ignore, &query};
   return !accel_->occluded(Ray{o0, p1 - o0, 1.f}, &filter);
 }

@@ -75,8 +75,10 @@ class Scene {
   // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
   // The ray aims at p1 itself and the first hit must be the target or a triangle coplanar with it
   // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to
-  // p1 it stands, so walls that meet the target's surface do not leak.
-  bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target) const;
+  // p1 it stands, so walls that meet the target's surface do not leak. `origin` is p0's own
+  // triangle where it has one: it settles a p0 on the edge where its surface meets another.
+  static constexpr uint32_t kNoTriangle = 0xffffffffu;
+  bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin = kNoTriangle) const;
   // True when nothing lies between p0 (on a surface with normal n0) and p1, a point in free
   // space such as a pinhole camera.
   bool visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const;

@@ -1,8 +1,11 @@
 #include "pathspace/chain_split.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace dualight {
@@ -69,8 +72,71 @@ ChainPart empty_part(const ChainStartUp& start, uint64_t first, uint64_t count) 
   return part;
 }
 
+namespace {
+
+bool all_finite_non_negative(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x) && x >= 0.0; });
+}
+
+void check_population(const ChainPopulation& p, const ChainStartUpShape& shape) {
+  if (p.depth < shape.first_depth || p.depth > shape.last_depth) {
+    throw std::invalid_argument("malformed chain start-up: a population of path length " + std::to_string(p.depth) +
+                                " where " + std::to_string(shape.first_depth) + " to " +
+                                std::to_string(shape.last_depth) + " are possible");
+  }
+  if (!all_finite_non_negative(p.weights) || !std::isfinite(p.b_splat) || p.b_splat < 0.0) {
+    throw std::invalid_argument("malformed chain start-up: bootstrap weights or b not finite and non-negative");
+  }
+  const bool has_weight = std::any_of(p.weights.begin(), p.weights.end(), [](double w) { return w > 0.0; });
+  if (p.chains > 0 && (!(p.b_splat > 0.0) || (!p.weights.empty() && !has_weight))) {
+    throw std::invalid_argument("malformed chain start-up: chains in a population without light");
+  }
+  if (p.chains > 0 && (shape.mutations == 0) != (p.target == 0)) {
+    throw std::invalid_argument("malformed chain start-up: a mutation target where the render has none, or none "
+                                "where it has one");
+  }
+}
+
+}  // namespace
+
+void check_chain_start_up(const ChainStartUp& start, size_t pixels, const ChainStartUpShape& shape) {
+  if (start.image.size() != 3 * pixels || !all_finite_non_negative(start.image)) {
+    throw std::invalid_argument("malformed chain start-up: its direct-light image is not " + std::to_string(pixels) +
+                                " finite pixels");
+  }
+  if (!(start.pilot_luminance.empty() || start.pilot_luminance.size() == pixels) ||
+      !all_finite_non_negative(start.pilot_luminance)) {
+    throw std::invalid_argument("malformed chain start-up: its pilot image is not " + std::to_string(pixels) +
+                                " finite pixels");
+  }
+  if (start.populations.size() > shape.populations) {
+    throw std::invalid_argument("malformed chain start-up: more populations than path lengths");
+  }
+  std::vector<int> seen;
+  uint64_t chains = 0, mutations = 0;
+  for (const ChainPopulation& p : start.populations) {
+    check_population(p, shape);
+    if (std::find(seen.begin(), seen.end(), p.depth) != seen.end()) {
+      throw std::invalid_argument("malformed chain start-up: two populations of one path length");
+    }
+    seen.push_back(p.depth);
+    chains += p.chains;  // each at most 2^32 (start_up_from_bytes), so no wrap-around
+    mutations += std::min<uint64_t>(p.target, uint64_t{1} << 62);
+  }
+  // Apportioned with at least one chain and mutation per population.
+  const uint64_t extra = start.populations.size();
+  if (chains > std::max(shape.chains, extra) || mutations > std::max(shape.mutations, extra)) {
+    throw std::invalid_argument("malformed chain start-up: more chains or mutations than the render asks for");
+  }
+  const MltStats& m = start.mlt;
+  if (!std::isfinite(m.b) || !std::isfinite(m.b_ci95) || !std::isfinite(m.b_splatted)) {
+    throw std::invalid_argument("malformed chain start-up: b is not finite");
+  }
+}
+
 void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t values) {
-  if (part.populations.size() > start.populations.size() || part.first_chain + part.chains > start.chains()) {
+  if (part.populations.size() > start.populations.size() || part.first_chain > start.chains() ||
+      part.chains > start.chains() - part.first_chain) {
     throw std::invalid_argument("the chain part does not belong to this start-up (more chains or populations)");
   }
   for (size_t i = 0; i < part.populations.size(); ++i) {
@@ -80,10 +146,30 @@ void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t v
         throw std::invalid_argument("the chain part's image has another size than the start-up's");
       }
     }
+    if (!p.metropolis.non_negative() || !p.large.non_negative()) {
+      throw std::invalid_argument("the chain part's image holds negative sums");
+    }
+    if (p.mutations > 0 && p.metropolis.empty()) {
+      throw std::invalid_argument("the chain part counts mutations but holds no image for them");
+    }
     if (p.large_f.size() > start.populations[i].chains) {
       throw std::invalid_argument("the chain part has more chains than its population");
     }
+    const bool finite = std::all_of(p.large_f.begin(), p.large_f.end(), [](const MeanEstimate& e) {
+      return std::isfinite(e.sum) && std::isfinite(e.sum_sq) && e.sum >= 0.0 && e.sum_sq >= 0.0;
+    });
+    if (!finite || p.accepted > p.mutations || p.large_steps_accepted > p.large_steps) {
+      throw std::invalid_argument("the chain part's estimates are not finite or its counts do not add up");
+    }
   }
+}
+
+std::vector<float> chain_image(const std::vector<double>& image) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (!std::all_of(image.begin(), image.end(), [](double x) { return x >= 0.0 && x <= kMax; })) {
+    throw std::invalid_argument("the chain parts' sums give an image beyond float32's range");
+  }
+  return {image.begin(), image.end()};
 }
 
 RenderStats chain_render_stats(const ChainStartUp& start, const ChainPart& part, uint64_t mutations,

@@ -66,8 +66,30 @@ struct ChainPart {
 // A part for chains [first, first + count) of `start` (clamped to its chains), with nothing done.
 ChainPart empty_part(const ChainStartUp& start, uint64_t first, uint64_t count);
 
-// Throws std::invalid_argument unless `part` fits `start` (populations, sums of `values` each).
+// What a render's options allow its start-up to hold: populations of path lengths [first_depth,
+// last_depth], at most `populations` of them (one of depth 0 for every length but multiplexed
+// MLT's), at most `chains` chains between them (or one per population), and `mutations` in all
+// (0: until the time limit), shared out to the populations.
+struct ChainStartUpShape {
+  int first_depth = 0, last_depth = 0;
+  size_t populations = 1;
+  uint64_t chains = 1, mutations = 0;
+};
+
+// Throws std::invalid_argument unless `start` can drive a render of `pixels` pixels with this
+// shape: its image, pilot and bootstrap finite and of the render's size, its populations'
+// depths within the shape's and distinct, chains and mutations within the render's, chains
+// only where there is light to start them. A start-up may come from another process (executor
+// tasks): every field that indexes memory or bounds a loop is checked.
+void check_chain_start_up(const ChainStartUp& start, size_t pixels, const ChainStartUpShape& shape);
+
+// Throws std::invalid_argument unless `part` fits `start` (populations, chain range, sums of
+// `values` each wherever mutations were counted, finite estimates).
 void check_chain_part(const ChainStartUp& start, const ChainPart& part, size_t values);
+
+// The merged image in float32; std::invalid_argument if a value is beyond float32's range or not
+// finite (only corrupt parts' sums get there: each splat is bounded, exact_sum.h).
+std::vector<float> chain_image(const std::vector<double>& image);
 
 // A render's stats from its start-up and chains (seconds: the parts'; the caller knows better).
 RenderStats chain_render_stats(const ChainStartUp& start, const ChainPart& part, uint64_t mutations, size_t pixels);

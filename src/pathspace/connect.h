@@ -19,7 +19,8 @@ namespace dualight {
 // the vertex itself where it has no surface (the camera, a point emitter).
 inline bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
   if (b.on_surface() && !a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
-  return shadow_ray_visible_to(scene, a.p, a.n, b.p, b.prim, b.on_surface(), counters);
+  return shadow_ray_visible_to(scene, a.p, a.n, a.on_surface() ? a.prim : Scene::kNoTriangle, b.p, b.prim,
+                               b.on_surface(), counters);
 }
 
 // Vertex standing for the pinhole camera in t = 1 connections.

@@ -251,6 +251,14 @@ Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOpt
 
 }  // namespace
 
+// One population of every path length: the chains that found a start path share the mutations.
+ChainStartUpShape mlt_start_up_shape(const MltOptions& opt, size_t pixels) {
+  ChainStartUpShape shape;
+  shape.chains = std::max<uint32_t>(opt.chains, 1);
+  shape.mutations = pixels * opt.spp;
+  return shape;
+}
+
 ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
                           RenderControl& control, const std::function<double()>& elapsed) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
@@ -306,7 +314,7 @@ ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const
       const DiscreteDistribution pick(weight);
       Subpaths paths;
       TraceCounters counters = rays.local();
-      for (uint32_t id = 0; id < std::max<uint32_t>(opt.chains, 1); ++id) {
+      for (uint32_t id = 0; id < std::max<uint32_t>(opt.chains, 1) && !control.cancelled(); ++id) {
         if (start_chain(scene, camera, bdpt, opt, importance, population, pick, id, paths, counters).current.target >
             0.0) {
           population.chain_ids.push_back(id);
@@ -331,6 +339,7 @@ ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltO
                      const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                      const std::function<double()>& elapsed, const MltChainHooks& hooks) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_start_up(start, pixels, mlt_start_up_shape(opt, pixels));
   ChainPart part = empty_part(start, first, count);
   first = part.first_chain;
   const MutationSet mutations(opt, camera, scene.features());
@@ -352,7 +361,7 @@ ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltO
     const DiscreteDistribution pick(population.weights);
     Subpaths paths;
     TraceCounters counters = rays.local();
-    for (uint64_t c = first; c < first + part.chains; ++c) {
+    for (uint64_t c = first; c < first + part.chains && !control.cancelled(); ++c) {
       chains.push_back(start_chain(scene, camera, bdpt, opt, importance, population, pick,
                                    population.chain_ids[c], paths, counters));
     }
@@ -410,6 +419,7 @@ ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltO
 PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const ChainPart& part,
                          const MltOptions& opt, const PinholeCamera& camera) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_start_up(start, pixels, mlt_start_up_shape(opt, pixels));
   check_chain_part(start, part, 3 * pixels);
   PathMltResult out;
   MltResult& result = out.result;
@@ -428,7 +438,7 @@ PathMltResult mlt_finish(const Scene& scene, const ChainStartUp& start, const Ch
     const ExactSums& chain_sum = part.populations.front().metropolis;
     for (size_t i = 0; i < image.size(); ++i) image[i] += chain_sum.value(i) / static_cast<double>(total);
   }
-  result.image.assign(image.begin(), image.end());
+  result.image = chain_image(image);
   mlt.mutations = total;
   for (const MutationStats& s : out.mutations) {
     mlt.accepted += s.accepted;

@@ -80,6 +80,7 @@ PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const 
 
 // render_mlt in the three parts of chain_split.h, for renders split into tasks; as
 // pssmlt_start_up, pssmlt_chains and pssmlt_finish.
+ChainStartUpShape mlt_start_up_shape(const MltOptions& options, size_t pixels);
 ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
                           RenderControl& control, const std::function<double()>& elapsed);
 ChainPart mlt_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,

@@ -38,7 +38,9 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Frame& 
     ++counters.skipped_connections;
     return Color(0.f);
   }
-  if (!shadow_ray_visible_to(scene, hit.p, hit.n, ls.p, ls.prim, ls.on_surface, counters)) return Color(0.f);
+  if (!shadow_ray_visible_to(scene, hit.p, hit.n, hit.prim, ls.p, ls.prim, ls.on_surface, counters)) {
+    return Color(0.f);
+  }
   const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
   // A delta-position emitter (a point light) is found by no BSDF sample: its sample keeps full
   // weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/apportion.h"
 #include "core/distribution.h"
 #include "pathspace/shadow_ray.h"
 #include "core/mean_estimate.h"
@@ -209,7 +210,7 @@ bool run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const Chain
   {
     auto evaluate = make();
     TraceCounters counters = rays.local();
-    for (uint64_t c = lo; c < hi; ++c) {
+    for (uint64_t c = lo; c < hi && !control.cancelled(); ++c) {
       Pcg32 rng(seed, c);
       float u = rng.next_float();
       const size_t i = pick.sample(u);
@@ -222,6 +223,7 @@ bool run_chains(const MakeEvaluator& make, const PssmltOptions& opt, const Chain
     }
     rays.add(counters);
   }
+  if (chains.size() < n_chains) return false;  // Ctrl-C while the chains started
   const SplatScale per_h{opt.large_step_mis, static_cast<float>(population.b_splat), opt.large_step_probability};
   pop.large_f.assign(n_chains, MeanEstimate{});
   std::vector<uint64_t> accepted(n_chains, 0), large_acc(n_chains, 0), zero(n_chains, 0);
@@ -282,6 +284,20 @@ bool render_direct(const Scene& scene, const PinholeCamera& camera, const Pssmlt
 
 }  // namespace
 
+// One population of depth 0 (every path length), or with multiplexed MLT one per path length
+// from 1 (3 when BDPT renders the direct light apart) to max_depth.
+ChainStartUpShape pssmlt_start_up_shape(const PssmltOptions& opt, size_t pixels) {
+  ChainStartUpShape shape;
+  shape.chains = std::max<uint32_t>(opt.chains, 1);
+  shape.mutations = pixels * opt.spp;
+  if (opt.multiplexed) {
+    shape.first_depth = opt.direct_spp > 0 ? 3 : 1;
+    shape.last_depth = opt.max_depth;
+    shape.populations = opt.max_depth >= shape.first_depth ? static_cast<size_t>(opt.max_depth - shape.first_depth + 1) : 0;
+  }
+  return shape;
+}
+
 ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
                              RenderControl& control, const std::function<double()>& elapsed) {
   ChainStartUp start;
@@ -300,8 +316,8 @@ ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, co
     // proportion to the bootstrap b_d, deterministically, so the brightness does not depend on
     // which lengths the chains happened to visit. Each b_d is then refined by its chains' large
     // steps, and its population's Metropolis part rescaled to it.
-    const int first = opt.multiplexed ? (opt.direct_spp > 0 ? 3 : 1) : 0;
-    const int last = opt.multiplexed ? opt.max_depth : 0;
+    const ChainStartUpShape shape = pssmlt_start_up_shape(opt, pixels);
+    const int first = shape.first_depth, last = shape.last_depth;
     double b_total = 0.0;
     for (int d = first; d <= last; ++d) {
       // Under a time limit the lengths share the bootstrap's share.
@@ -316,14 +332,15 @@ ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, co
       start.populations.push_back(std::move(p));
     }
     mlt.b_splatted = b_total;
-    for (ChainPopulation& p : start.populations) {
+    std::vector<double> b_per_depth;
+    for (const ChainPopulation& p : start.populations) b_per_depth.push_back(p.b_splat);
+    const std::vector<uint64_t> chains = apportion(n_chains, b_per_depth, 1);
+    const std::vector<uint64_t> targets = apportion(target, b_per_depth, target > 0 ? 1 : 0);
+    for (size_t i = 0; i < start.populations.size(); ++i) {
+      ChainPopulation& p = start.populations[i];
       if (!(p.b_splat > 0.0)) continue;
-      p.chains = opt.multiplexed
-                     ? std::max<size_t>(1, static_cast<size_t>(std::llround(n_chains * p.b_splat / b_total)))
-                     : n_chains;
-      p.target = opt.multiplexed && target > 0
-                     ? std::max<uint64_t>(1, std::llround(static_cast<double>(target) * p.b_splat / b_total))
-                     : target;
+      p.chains = opt.multiplexed ? chains[i] : n_chains;
+      p.target = opt.multiplexed ? targets[i] : target;
     }
     // Smallest b_d first: each length gets its share of the time left, so the overrun of a
     // length's last round falls on the larger shares after it, where it matters least.
@@ -346,6 +363,7 @@ ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const P
                         const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                         const std::function<double()>& elapsed) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_start_up(start, pixels, pssmlt_start_up_shape(opt, pixels));
   ChainPart part = empty_part(start, first, count);
   first = part.first_chain;
   // The range's chains in population p: [lo, hi) in the population's own indices.
@@ -393,6 +411,7 @@ ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const P
 MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const PssmltOptions& opt,
                         const PinholeCamera& camera) {
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  check_chain_start_up(start, pixels, pssmlt_start_up_shape(opt, pixels));
   check_chain_part(start, part, 3 * pixels);
   MltResult result;
   result.direct = start.direct;
@@ -427,7 +446,7 @@ MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const 
     mlt.independent_samples += b.n;
   }
   mlt.b_ci95 = 1.96 * std::sqrt(var_total);
-  result.image.assign(image.begin(), image.end());
+  result.image = chain_image(image);
   result.stats = chain_render_stats(start, part, mlt.mutations, pixels);
   return result;
 }

@@ -68,6 +68,8 @@ ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, co
 ChainPart pssmlt_chains(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& options,
                         const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                         const std::function<double()>& elapsed);
+// What the options allow a start-up to hold (checked before its chains run or merge).
+ChainStartUpShape pssmlt_start_up_shape(const PssmltOptions& options, size_t pixels);
 // The image and stats from the start-up and the parts merged in chain order (seconds left 0).
 MltResult pssmlt_finish(const ChainStartUp& start, const ChainPart& part, const PssmltOptions& options,
                         const PinholeCamera& camera);

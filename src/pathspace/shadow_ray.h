@@ -22,15 +22,16 @@ inline bool connections_unoccluded(const Scene& scene, const PinholeCamera& came
   return true;
 }
 
-// Scene::visible, or true without a ray when the counters say connections are unoccluded.
-inline bool shadow_ray_visible(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target,
-                               TraceCounters& counters) {
+// Scene::visible (p0 on triangle `origin`, or Scene::kNoTriangle), or true without a ray when
+// the counters say connections are unoccluded.
+inline bool shadow_ray_visible(const Scene& scene, const Vec3& p0, const Vec3& n0, uint32_t origin, const Vec3& p1,
+                               uint32_t target, TraceCounters& counters) {
   if (counters.unoccluded) {
     ++counters.skipped_shadow_rays;
     return true;
   }
   ++counters.rays;
-  return scene.visible(p0, n0, p1, target);
+  return scene.visible(p0, n0, p1, target, origin);
 }
 
 // Scene::visible_point (p1 in free space, the camera), likewise.
@@ -44,10 +45,11 @@ inline bool shadow_ray_visible_point(const Scene& scene, const Vec3& p0, const V
   return scene.visible_point(p0, n0, p1);
 }
 
-// To p1 on triangle `target` when `on_surface`, else to p1 in free space (a point emitter).
-inline bool shadow_ray_visible_to(const Scene& scene, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target,
-                                  bool on_surface, TraceCounters& counters) {
-  return on_surface ? shadow_ray_visible(scene, p0, n0, p1, target, counters)
+// From p0 on triangle `origin` to p1 on triangle `target` when `on_surface`, else to p1 in
+// free space (a point emitter).
+inline bool shadow_ray_visible_to(const Scene& scene, const Vec3& p0, const Vec3& n0, uint32_t origin, const Vec3& p1,
+                                  uint32_t target, bool on_surface, TraceCounters& counters) {
+  return on_surface ? shadow_ray_visible(scene, p0, n0, origin, p1, target, counters)
                     : shadow_ray_visible_point(scene, p0, n0, p1, counters);
 }
 

@@ -219,7 +219,7 @@ class RowIntegrator {
     for (size_t k = 0; k < rule_.size(); ++k) {
       if (!(kernel[k] > 0.0)) continue;
       const Vec3 x(static_cast<float>(points[k].x), static_cast<float>(points[k].y), static_cast<float>(points[k].z));
-      const int visible = visible_rays(x, patches_.normal(i), j, rng);
+      const int visible = visible_rays(x, patches_.normal(i), i, j, rng);
       counters.rays += static_cast<uint64_t>(options_.shadow_rays);
       value += rule_[k].weight * kernel[k] * visible / options_.shadow_rays;
     }
@@ -227,8 +227,8 @@ class RowIntegrator {
   }
 
   // How many of shadow_rays stratified points on source j (a jittered grid in the unit square)
-  // x, on a receiver with normal n, sees.
-  int visible_rays(const Vec3& x, const Vec3& n, uint32_t j, Pcg32& rng) const {
+  // x, on receiver i with normal n, sees.
+  int visible_rays(const Vec3& x, const Vec3& n, uint32_t i, uint32_t j, Pcg32& rng) const {
     int visible = 0;
     for (int s = 0; s < options_.shadow_rays; ++s) {
       Point2 u{rng.next_float(), rng.next_float()};
@@ -241,7 +241,7 @@ class RowIntegrator {
       const Point2 b = shadow_ray_target(u);
       const Vec3 y =
           patches_.vertex(j, 0) * (1.f - b.u - b.v) + patches_.vertex(j, 1) * b.u + patches_.vertex(j, 2) * b.v;
-      visible += patches_.visible(x, n, y, j) ? 1 : 0;
+      visible += patches_.visible(x, n, y, j, i) ? 1 : 0;
     }
     return visible;
   }

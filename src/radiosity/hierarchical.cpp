@@ -125,7 +125,7 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
       for (int m = 0; m < n; ++m) {
         const Point2 u = shadow_ray_target({(m + rng.next_float()) / n, rng.next_float()});
         const Vec3 y = point_in(s.v, u.u, u.v);
-        visible += scene_.visible(points[k], r.normal, y, s.root) ? 1 : 0;
+        visible += scene_.visible(points[k], r.normal, y, s.root, r.root) ? 1 : 0;
       }
       rays += static_cast<uint64_t>(n);
       estimate += kernel[k] * visible / n;
@@ -362,6 +362,7 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
       push_pull_importance(root, zero);
     }
     change = leaf_change(before);
+    if (control != nullptr) control->done.fetch_add(1, std::memory_order_relaxed);
     if (change <= options_.tolerance) break;
   }
 
@@ -372,12 +373,16 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   const Stopwatch t0;
   HierarchicalStep st;
   const uint64_t rays_before = rays_, skipped_before = rays_skipped_;
+  // Progress: the refinement, then each sweep (the sweeps may end early, at the tolerance).
+  if (control != nullptr) control->total.store(static_cast<uint64_t>(options_.sweeps) + 1);
   // Refine (from the second step on: the oracles need a solution).
   if (iteration_ > 0) {
     refine_links(flag_links(), st);
     if (st.links_refined > 0) assign_receiver();
   }
+  if (control != nullptr) control->done.store(1);
   const double change = solve_links(control);
+  if (control != nullptr && !control->cancelled()) control->done.store(control->total.load());
 
   ++iteration_;
   st.iteration = iteration_;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "check.h"
+#include "core/apportion.h"
 #include "core/exact_sum.h"
 #include "pathspace/chain_rounds.h"
 #include "pathspace/chain_split.h"
@@ -177,4 +178,34 @@ TEST_CASE("start_ups_and_parts_survive_bytes") {
     threw = true;
   }
   CHECK(threw);
+}
+
+// Multiplexed MLT splits its chains and mutations over path lengths by b_d: the parts must sum
+// to what was asked for (rounding each share on its own gave 39 chains of 40), follow the
+// weights to within one unit, and give every length with light at least one chain.
+TEST_CASE("apportion_sums_to_the_total_and_follows_the_weights") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> weight(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<double> w(1 + rng() % 8);
+    for (double& x : w) x = rng() % 4 == 0 ? 0.0 : std::pow(weight(rng), 6.0);
+    const uint64_t total = rng() % 200;
+    const std::vector<uint64_t> part = apportion(total, w, 1);
+    uint64_t sum = 0, positive = 0;
+    double w_sum = 0.0;
+    for (size_t i = 0; i < w.size(); ++i) {
+      sum += part[i];
+      positive += w[i] > 0.0;
+      w_sum += w[i];
+      CHECK((w[i] > 0.0 ? part[i] >= 1 : part[i] == 0));
+    }
+    CHECK(sum == (positive > total ? positive : (positive ? total : 0)));
+    // Without minimums to honour, every part is its quota rounded up or down.
+    bool bumped = positive == 0;
+    for (const double x : w) bumped |= x > 0.0 && total * x / w_sum < 1.0;
+    if (bumped) continue;
+    for (size_t i = 0; i < w.size(); ++i) CHECK(std::abs(static_cast<double>(part[i]) - total * w[i] / w_sum) < 1.0);
+  }
+  CHECK(apportion(40, {0.1, 0.2, 0.3, 0.4}, 1) == std::vector<uint64_t>{4, 8, 12, 16});
+  CHECK(apportion(10, {1.0, 1.0, 1.0}, 1) == std::vector<uint64_t>{4, 3, 3});
 }

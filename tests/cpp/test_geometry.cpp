@@ -1,5 +1,6 @@
 // Ray-triangle conventions of the Embree wrapper and the scene, and the ray offset.
 #include <cmath>
+#include <vector>
 
 #include "check.h"
 #include "core/ray.h"
@@ -112,4 +113,45 @@ TEST_CASE("visibility_is_blocked_by_a_wall_touching_the_target_surface") {
     CHECK(scene.visible(right, Vec3(-1, 0, 0), target, 2));
   }
   CHECK(scene.visible(left, Vec3(1, 0, 0), Vec3(0.9f, 0.f, 0.5f), 1));
+}
+
+TEST_CASE("visibility_from_and_to_points_on_the_edge_where_two_walls_meet") {
+  // The floor y = 0 (prims 0, 1) and the wall x = 0 (prims 2, 3) meet along the z axis, as the
+  // walls of a furnace do; a back wall z = 1 (prims 4, 5) faces them. A point on that edge
+  // lies in both planes. A segment from the back wall to a target on the edge reaches the
+  // floor's plane only at its end, where Embree reported the floor (t = 1); a segment from a
+  // path vertex on the edge, offset along the wall's normal, starts in the floor's plane, where
+  // Embree reported the floor (t = 0). Both lost light in a furnace (issue 18). A wall z = 0.95
+  // standing between still blocks them all, and so does the floor for a point below it: the
+  // edge's wall is reached from there only through the floor (a closed cell's inner edge seen
+  // from outside, which leaked while the target's plane alone was asked).
+  const Material m{Lambertian{Color(0.5f)}, Color(0.f)};
+  const std::vector<float> room{0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0,   // floor, normal +y
+                                0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1,   // wall x = 0, normal +x
+                                0, 0, 1, 0, 1, 1, 1, 1, 1, 1, 0, 1};  // back wall z = 1, normal -z
+  const std::vector<uint32_t> quads{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 8, 9, 10, 8, 10, 11};
+  std::vector<float> walled = room;
+  walled.insert(walled.end(), {0, 0, 0.95f, 1, 0, 0.95f, 1, 1, 0.95f, 0, 1, 0.95f});
+  std::vector<uint32_t> walled_quads = quads;
+  walled_quads.insert(walled_quads.end(), {12, 13, 14, 12, 14, 15});
+  const Scene open(room, quads, {0, 0, 0, 0, 0, 0}, {m});
+  const Scene blocked(walled, walled_quads, {0, 0, 0, 0, 0, 0, 0, 0}, {m});
+  int reached = 0, hidden = 0, tried = 0, tried_hidden = 0;
+  for (int i = 1; i < 40; ++i) {
+    for (int j = 1; j < 40; ++j) {
+      const Vec3 edge(0.f, 0.f, 0.0237f * static_cast<float>(j) + 0.001f * static_cast<float>(i % 7));
+      // On the back wall's first triangle (y > x), prim 4.
+      const Vec3 back(0.05f + 0.005f * static_cast<float>(i), 0.3f + 0.015f * static_cast<float>(j), 1.f);
+      tried += 2;
+      reached += open.visible(back, Vec3(0, 0, -1), edge, 3);  // to the edge, on the wall's prim 3
+      reached += open.visible(edge, Vec3(1, 0, 0), back, 4, 3);  // from the edge, a vertex on prim 3
+      hidden += !blocked.visible(back, Vec3(0, 0, -1), edge, 3);
+      hidden += !blocked.visible(edge, Vec3(1, 0, 0), back, 4, 3);
+      const Vec3 below(0.3f + 0.0171f * static_cast<float>(i), -0.5f, 0.0123f * static_cast<float>(j));
+      hidden += !open.visible(below, Vec3(0, -1, 0), edge, 3);
+      ++tried_hidden;
+    }
+  }
+  CHECK(hidden == tried + tried_hidden);
+  CHECK(reached == tried);
 }

@@ -15,7 +15,11 @@ import pytest
 atheris = pytest.importorskip("atheris", reason="atheris is installed by scripts/setup.sh")
 
 HERE = Path(__file__).parent
-TARGETS = {"scene": HERE / "fuzz_scene.py", "loaders": HERE / "fuzz_loaders.py"}
+TARGETS = {
+    "scene": HERE / "fuzz_scene.py",
+    "loaders": HERE / "fuzz_loaders.py",
+    "tasks": HERE / "fuzz_tasks.py",
+}
 REGRESSIONS = sorted((HERE / "regressions").glob("*/*"))
 
 

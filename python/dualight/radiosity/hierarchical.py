@@ -31,6 +31,7 @@ benchmarks/bench_hierarchical.py.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -119,6 +120,9 @@ class HierarchicalSolver:
         Skip visibility rays where the scene makes them pointless (a convex enclosure, see
         :attr:`dualight.Scene.features`); steps report ``rays_skipped``. ``False`` traces
         them all.
+    samples_per_axis:
+        Stratified camera samples per pixel and axis (1 to 64) that give the view's
+        importance and measurement (see :func:`dualight.radiosity.solve`).
     """
 
     def __init__(
@@ -137,6 +141,7 @@ class HierarchicalSolver:
         threads: int = _DEFAULT.threads,
         max_links: int = _DEFAULT.max_links,
         skip: bool = _DEFAULT.skip_unneeded,
+        samples_per_axis: int = 4,
     ) -> None:
         if min_area is not None and not min_area > 0:
             raise ValueError(f"min_area must be > 0, got {min_area!r}")
@@ -160,22 +165,29 @@ class HierarchicalSolver:
             raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
         self.scene, self.camera, self.oracle, self.epsilon = scene, cam, oracle, epsilon
         start = time.perf_counter()
-        prim, b1, b2, weight = receiver_samples(scene, cam, window=window, seed=seed)
+        prim, b1, b2, weight = receiver_samples(
+            scene, cam, window=window, seed=seed, samples_per_axis=samples_per_axis
+        )
         self._core = _core.HierarchicalSolver(scene._compile(), prim, b1, b2, weight, options)
         self.setup_seconds = time.perf_counter() - start
         self.history: list[HierarchicalStep] = []
 
-    def step(self) -> HierarchicalStep:
-        """Refine every link the oracle flags, then solve radiosity and importance."""
-        s = self._core.step()
+    def step(self, progress: Callable[[int, int], None] | None = None) -> HierarchicalStep:
+        """Refine every link the oracle flags, then solve radiosity and importance;
+        ``progress(done, total)`` is called about every 100 ms (an exception it raises stops
+        the step and reaches the caller)."""
+        s = self._core.step(progress)
         result = HierarchicalStep(**{k: s[k] for k in HierarchicalStep.__dataclass_fields__})
         self.history.append(result)
         return result
 
-    def solve(self, max_iter: int = 30) -> list[HierarchicalStep]:
-        """Step until nothing is refined (or ``max_iter`` steps); returns all steps."""
+    def solve(
+        self, max_iter: int = 30, progress: Callable[[int, int], None] | None = None
+    ) -> list[HierarchicalStep]:
+        """Step until nothing is refined (or ``max_iter`` steps); returns all steps.
+        ``progress`` is each step's (see :meth:`step`)."""
         while len(self.history) < max_iter:
-            step = self.step()
+            step = self.step(progress)
             if step.converged or step.link_limit:
                 break
         return self.history
