@@ -91,7 +91,10 @@ def _truncated(tmp: Path, suffix: str) -> Path:
 SCENE_BUILDER = [
     ("vertex NaN", _add(QV * np.nan), ValueError, "vertex 0 is not finite"),
     ("vertex Inf", _add(np.where(QV == 1, np.inf, QV)), ValueError, "not finite"),
-    ("vertex beyond 1e30", _add(QV * 1e31), ValueError, "beyond 1e30"),
+    ("vertex beyond 1e30", _add(QV * 1e31), ValueError, "beyond 1e12"),
+    # fixed (issue 18, item 6): accepted up to 1e30; from about 5e12 light tracing and BDPT
+    # render wrong, from 1.4e9 triangle normals overflowed (now computed in double there)
+    ("vertex at 2e13", _add(QV * 2e13), ValueError, r"beyond 1e12 .*areas and pdfs"),
     ("vertices (V, 2)", _add(QV[:, :2]), ValueError, r"vertices must have shape \(V, 3\)"),
     ("vertices empty", _add(np.zeros((0, 3))), ValueError, r"shape \(V, 3\) with V > 0"),
     ("vertices not numbers", _add([["a", "b", "c"]] * 4), ValueError, "vertices must be"),  # fixed
@@ -119,6 +122,11 @@ SCENE_BUILDER = [
     ("emission < 0", _add(emission=(1, -1, 1)), ValueError, "emission must be >= 0"),
     ("emission Inf", _add(emission=(1, np.inf, 1)), ValueError, "emission must be finite"),
     ("emission a word", _add(emission="bright"), ValueError, "emission must be 3 numbers"),  # fixed
+    # fixed (issue 18, item 6): rendered black (above 3.4e38), 0 by light tracing and BDPT
+    # (1.8e34 up), an Inf variance (1e30), "no emitter" (1e-46)
+    ("emission 1e39", _add(emission=(1e39,) * 3), ValueError, r"0 or within \[1e-12, 1e12\]"),
+    ("emission 1e30", _add(emission=(1, 1e30, 1)), ValueError, "squares of such values"),
+    ("emission 1e-46", _add(emission=(1e-46, 0, 0)), ValueError, r"within \[1e-12, 1e12\]"),
     ("material not one", _add(material="glass"), TypeError, "material must be a dualight"),
     (
         "material and albedo",
@@ -130,6 +138,9 @@ SCENE_BUILDER = [
     ("diffuse albedo < 0", lambda: dualight.Diffuse((-1, 0, 0)), ValueError, r"in \[0, 1\]"),
     ("ior 0", lambda: dualight.Dielectric(ior=0.0), ValueError, "ior must be finite and > 0"),
     ("ior NaN", lambda: dualight.Dielectric(ior=np.nan), ValueError, "ior must be finite"),
+    # fixed (issue 18, item 6): accepted, then infinite or zero in the core's float32
+    ("ior 1e39", lambda: dualight.Dielectric(ior=1e39), ValueError, r"within \[1e-18, 1e18\]"),
+    ("ior 1e-300", lambda: dualight.Dielectric(ior=1e-300), ValueError, "square it in float32"),
     ("scene camera a string", lambda: dualight.Scene(camera="cam"), TypeError, "camera must be"),
 ]
 
@@ -148,6 +159,11 @@ CAMERA = [
     ("resolution bools", _camera(resolution=(True, 8)), ValueError, "resolution"),  # fixed
     ("fov 0", _camera(fov=0), ValueError, r"fov must be in \(0, 180\)"),
     ("fov 180", _camera(fov=180), ValueError, r"fov must be in \(0, 180\)"),
+    # fixed (issue 18, item 6): accepted, then refused by the core when rendering
+    ("fov 179.9999999", _camera(fov=179.9999999), ValueError, r"rounds to 180.0 degrees"),
+    # fixed (issue 18, item 6): "camera up is parallel to the view" (the core's float32 overflowed)
+    ("camera origin 3e19", _camera(origin=(0.5, 0.5, 3e19)), ValueError, "beyond 1e12"),
+    ("camera up 1e30", _camera(up=(0, 1e30, 0)), ValueError, "camera up .* beyond 1e12"),
     ("fov negative", _camera(fov=-5), ValueError, "fov"),
     ("fov NaN", _camera(fov=np.nan), ValueError, "fov"),
     ("fov a word", _camera(fov="wide"), ValueError, "fov must be a number"),  # fixed
@@ -239,6 +255,19 @@ def _scene_xml(tmp: Path, body: str) -> Path:
     return _write(tmp, "s.xml", xml.encode())
 
 
+NESTED_BSDF = '<bsdf type="twosided" id="b">'
+PLY_CLAIMING_1E9 = (
+    b"ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\n"
+    b"property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    b"0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
+)
+
+
+def _xml_with_ply(tmp: Path, ply: bytes) -> Path:
+    _write(tmp, "m.ply", ply)
+    return _scene_xml(tmp, '<shape type="ply"><string name="filename" value="m.ply"/></shape>')
+
+
 def _obj_with_kd(tmp: Path, kd: str) -> Path:
     _write(tmp, "a.mtl", f"newmtl m\nKd {kd}\n".encode())
     return _write(tmp, "a.obj", b"mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n")
@@ -251,6 +280,32 @@ SCENE_FILES = [
         lambda t: dualight.load_obj(_write(t, "a.obj", b"mtllib gone.mtl\nv 0 0 0\n")),
         FileNotFoundError,
         "no such MTL file",
+    ),
+    (
+        "obj face index 0",  # fixed: said "every triangle has zero area" (issue 18)
+        lambda t: dualight.load_obj(_write(t, "a.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")),
+        ValueError,
+        r"line 4: face index 0 .*OBJ indices start at 1",
+    ),
+    (
+        "obj relative index before the first vertex",  # fixed: resolved from the file's end
+        lambda t: dualight.load_obj(_write(t, "a.obj", b"v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n")),
+        ValueError,
+        r"line 3: relative index -3 .*before the first 'v' \(2 read so far\)",
+    ),
+    (
+        "ply declaring 1e9 vertices",  # fixed: said "no triangles or polygons" (issue 18)
+        lambda t: dualight.load_mitsuba_xml(_xml_with_ply(t, PLY_CLAIMING_1E9)),
+        ValueError,
+        r"declares 1000000000 'vertex' elements, more than its 26-byte body can hold",
+    ),
+    (
+        "xml nested 2000 deep",  # fixed: RecursionError (issue 18)
+        lambda t: dualight.load_mitsuba_xml(
+            _scene_xml(t, NESTED_BSDF * 2000 + '<bsdf type="diffuse"/>' + "</bsdf>" * 2000)
+        ),
+        ValueError,
+        "nested more than 64 deep",
     ),
     (
         "obj without faces",

@@ -180,6 +180,27 @@ def test_obj_bad_files(tmp_path: Path, make: Any, error: type, message: str) -> 
         dualight.load_obj(make(tmp_path))
 
 
+def test_obj_relative_indices_count_back_from_the_vertices_read_so_far(tmp_path: Path) -> None:
+    # Issue 18: trimesh resolves -1 against the file's last vertex, so both triangles were the
+    # second one. The OBJ format counts back from the vertices read before the face.
+    obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 5 5 5\nv 6 5 5\nv 5 6 5\nf -3 -2 -1\n"
+    (mesh,) = dualight.load_obj(_obj(tmp_path, obj, mtl=None)).meshes
+    corners = mesh.vertices[mesh.triangles]
+    np.testing.assert_array_equal(corners[:, 0], [[0, 0, 0], [5, 5, 5]])
+    # The same with texture coordinates in between (each kind counts on its own).
+    obj = "v 0 0 0\nvt 0 0\nvt 1 0\nvt 0 1\nv 1 0 0\nv 0 1 0\nf -3/-3 -2/-2 -1/-1\n"
+    (mesh,) = dualight.load_obj(_obj(tmp_path, obj, mtl=None)).meshes
+    corners = mesh.vertices[mesh.triangles[0]]
+    np.testing.assert_array_equal(corners, [[0, 0, 0], [1, 0, 0], [0, 1, 0]])
+
+
+def test_obj_usemtl_of_an_undefined_material_warns(tmp_path: Path) -> None:
+    obj = "mtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nosuch\nf 1 2 3\n"
+    with pytest.warns(UserWarning, match=r"usemtl names materials no mtllib defines \('nosuch'\)"):
+        scene = dualight.load_obj(_obj(tmp_path, obj), default_reflectance=(0.1, 0.2, 0.3))
+    assert scene.meshes[0].material == dualight.Diffuse((0.1, 0.2, 0.3))
+
+
 def test_obj_binary_garbage(tmp_path: Path) -> None:
     path = tmp_path / "noise.obj"
     path.write_bytes(np.random.default_rng(1).bytes(2000))

@@ -10,6 +10,7 @@ The iterative solvers stop at the relative residual max|b - M x| / max|b| <= tol
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 
 import numpy as np
@@ -494,8 +495,6 @@ def test_the_direct_solver_refuses_too_many_patches_before_the_form_factors(monk
     """The dense solver's patch limit is checked before any form factor is computed (issue
     18: it took the form factors' minutes first); the control, within the limit, computes
     them."""
-    import sys
-
     solve_module = sys.modules["dualight.radiosity.solve"]  # the package's `solve` is the function
 
     def no_form_factors(*args, **kwargs):
@@ -507,3 +506,44 @@ def test_the_direct_solver_refuses_too_many_patches_before_the_form_factors(monk
         solve(scene, "direct", max_edge=20.0)
     with pytest.raises(AssertionError, match="form factors computed"):
         solve(scene, "direct", max_edge=200.0)
+
+
+def test_patches_that_memory_cannot_hold_are_refused_before_they_are_built(monkeypatch) -> None:
+    """Issue 18: max_edge=0.5 on the Cornell box (31.8 million patches) passed the 50-million
+    check and took 5.4 GB before a MemoryError. The patch count is now known first and
+    refused, naming the memory it needs, when the system has less available; nothing sizeable
+    is allocated before. The control: the same subdivision with room for it goes ahead (here
+    a coarser one, to keep the test small)."""
+    import tracemalloc
+
+    patches_module = sys.modules["dualight.radiosity.patches"]
+    monkeypatch.setattr(patches_module, "_available_bytes", lambda: 2**30)  # 1 GiB free
+    scene = scenes.cornell_box(resolution=(16, 16))
+    tracemalloc.start()
+    try:
+        with pytest.raises(MemoryError, match=r"3\.184e\+07 patches, which need about 10\.7 GiB"):
+            PatchMesh(scene, max_edge=0.5)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 2**20, f"{peak} bytes allocated before the refusal"
+    assert len(PatchMesh(scene, max_edge=20.0)) == 20620  # fits in 1 GiB
+
+
+def test_the_memory_estimate_bounds_what_building_patches_takes() -> None:
+    """PATCH_BYTES, the estimate behind the refusal above, is at least numpy's peak per patch
+    while a PatchMesh is built (tracemalloc), at two sizes."""
+    import tracemalloc
+
+    from dualight.radiosity.patches import PATCH_BYTES
+
+    scene = scenes.cornell_box(resolution=(16, 16))
+    for max_edge in (20.0, 8.0):
+        tracemalloc.start()
+        try:
+            patches = PatchMesh(scene, max_edge=max_edge)
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        assert peak / len(patches) <= PATCH_BYTES, (max_edge, peak / len(patches))
+        del patches

@@ -953,7 +953,7 @@ class DirectSolver:
     """
     Dense LU per channel; solves M x = b and M^T x = b.
     """
-    def __init__(self, system: RadiositySystem, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, system: RadiositySystem, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> None:
         ...
     def solve(self, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dual: bool = False) -> numpy.typing.NDArray[numpy.float64]:
         ...
@@ -1081,7 +1081,7 @@ class HierarchicalSolver:
     """
     Hierarchical radiosity and importance (HSA91, SAS92); stepped.
     """
-    def __init__(self, scene: Scene, receiver_prim: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], receiver_b1: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_b2: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_weight: typing.SupportsFloat | typing.SupportsIndex, options: HierarchicalOptions) -> None:
+    def __init__(self, scene: Scene, receiver_prim: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], receiver_b1: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_b2: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_weight: typing.SupportsFloat | typing.SupportsIndex, options: HierarchicalOptions, progress: typing.Any = None) -> None:
         ...
     def leaves(self) -> dict:
         ...

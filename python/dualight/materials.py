@@ -192,6 +192,11 @@ class Dielectric(Material):
         ior = float(ior)
         if not (math.isfinite(ior) and ior > 0.0):
             raise ValueError(f"Dielectric ior must be finite and > 0, got {self.ior!r}")
+        if not 1e-18 <= ior <= 1e18:  # Fresnel squares it in float32
+            raise ValueError(
+                f"Dielectric ior must be within [1e-18, 1e18], got {self.ior!r}: the core's "
+                "Fresnel terms square it in float32, which overflows or underflows beyond"
+            )
         object.__setattr__(self, "ior", ior)
 
     def _core_parameters(self) -> tuple[RGB, float]:

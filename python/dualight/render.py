@@ -14,7 +14,7 @@ from dualight._progress import TqdmProgress as _TqdmProgress
 from dualight.executor import as_executor, render_chain_split, render_split
 from dualight.image import Image
 from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator, Heuristic, Method, Sampler
-from dualight.scene import Camera, Scene
+from dualight.scene import Camera, Scene, _freezes_scene
 
 # The core's defaults of the keywords render shares with the options (BDPT's have them all).
 _DEFAULT = _core.BdptOptions()
@@ -136,6 +136,7 @@ def _image(result: Mapping[str, Any], stats: dict[str, Any], strategy_images: bo
     return image
 
 
+@_freezes_scene
 def render(
     scene: Scene,
     method: Method = "path",

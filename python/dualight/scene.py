@@ -17,12 +17,15 @@ Conventions (the same as Mitsuba 3):
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import itertools
 import math
+import threading
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, ParamSpec, TypeVar
 
 import numpy as np
 
@@ -34,6 +37,14 @@ if TYPE_CHECKING:
 Vec3 = tuple[float, float, float]
 
 _DEFAULT_REFLECTANCE: Vec3 = (0.5, 0.5, 0.5)
+
+# The core computes in float32. Coordinates beyond 1e12 (squared distances, areas and their
+# pdfs' products leave its range: a Cornell box 5.6e12 across renders wrong by light tracing
+# and BDPT, 5.6e11 right), and scenes smaller than 1e-7 across (5.6e-9: wrong, 5.6e-8: right)
+# are refused. Before, a camera at 3e19 was "parallel to its up vector" (issue 18).
+COORDINATE_LIMIT = 1e12
+SMALLEST_EXTENT = 1e-7
+EMISSION_LIMIT = 1e12
 
 
 def _vec3(value: Any, name: str) -> Vec3:
@@ -88,9 +99,9 @@ class Camera:
     resolution: tuple[int, int] = (128, 128)
 
     def __post_init__(self) -> None:
-        origin = _vec3(self.origin, "camera origin")
-        target = _vec3(self.target, "camera target")
-        up = _vec3(self.up, "camera up")
+        origin = _position(self.origin, "camera origin")
+        target = _position(self.target, "camera target")
+        up = _position(self.up, "camera up")
         object.__setattr__(self, "origin", origin)
         object.__setattr__(self, "target", target)
         object.__setattr__(self, "up", up)
@@ -102,6 +113,11 @@ class Camera:
             raise ValueError(f"camera fov must be a number of degrees, got {self.fov!r}")
         if not (math.isfinite(fov) and 0.0 < fov < 180.0):
             raise ValueError(f"camera fov must be in (0, 180) degrees, got {self.fov}")
+        if not 0.0 < float(np.float32(fov)) < 180.0:  # the core's float32 fov
+            raise ValueError(
+                f"camera fov {self.fov!r} rounds to {float(np.float32(fov))} degrees in the "
+                "core's float32: it must be in (0, 180) there"
+            )
         object.__setattr__(self, "fov", fov)
         res = _resolution(self.resolution)
         if res[0] * res[1] > 1 << 28:
@@ -213,7 +229,25 @@ def _colour(value: Any, name: str, *, upper: float | None) -> Vec3:
         raise ValueError(f"{name} must be >= 0, got {rgb}")
     if upper is not None and any(c > upper for c in rgb):
         raise ValueError(f"{name} must be <= {upper} (energy conservation), got {rgb}")
+    if upper is None and any(
+        c != 0.0 and not 1 / EMISSION_LIMIT <= c <= EMISSION_LIMIT for c in rgb
+    ):
+        raise ValueError(
+            f"{name} must be 0 or within [1e-12, 1e12], got {rgb}: the core renders in float32, "
+            "and the squares of such values (the variance) overflow or underflow it"
+        )
     return rgb
+
+
+def _position(value: Any, name: str) -> Vec3:
+    """A point or direction of the camera: 3 finite numbers within +-COORDINATE_LIMIT."""
+    xyz = _vec3(value, name)
+    if max(abs(c) for c in xyz) > COORDINATE_LIMIT:
+        raise ValueError(
+            f"{name} {xyz} lies beyond 1e12: the core computes in float32, which cannot "
+            "render such coordinates"
+        )
+    return xyz
 
 
 def _faces_something(
@@ -239,6 +273,24 @@ def _faces_something(
     return False
 
 
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def _freezes_scene(function: Callable[_P, _R]) -> Callable[_P, _R]:
+    """``function(scene, ...)`` with ``scene`` frozen while it runs (when it is a Scene)."""
+
+    @functools.wraps(function)
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        scene = args[0] if args else kwargs.get("scene")
+        if not isinstance(scene, Scene):
+            return function(*args, **kwargs)
+        with scene._in_use():
+            return function(*args, **kwargs)
+
+    return wrapper
+
+
 class Scene:
     """A camera and triangle meshes with materials, some of them emitters.
 
@@ -259,16 +311,22 @@ class Scene:
         self._compiled: _core.Scene | None = None
         # Camera origins (None: no camera) the emitters were checked against (render time).
         self._checked_facing: set[Vec3 | None] = set()
+        # Renders and solves using the scene now (in any thread); add_mesh refuses meanwhile.
+        self._lock = threading.Lock()
+        self._users = 0
 
     def __getstate__(self) -> dict[str, Any]:
         # Picklable (render(executor=...) sends the description to workers): the compiled
-        # scene stays behind and is rebuilt where it is needed.
+        # scene and the in-use count stay behind; the compiled scene is rebuilt where needed.
         state = self.__dict__.copy()
         state["_compiled"] = None
+        del state["_lock"], state["_users"]
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update({"_checked_facing": set(), **state})
+        self._lock = threading.Lock()
+        self._users = 0
         for mesh in self._meshes:
             for value in vars(mesh).values():
                 if isinstance(value, np.ndarray):
@@ -283,7 +341,9 @@ class Scene:
     def camera(self, camera: Camera) -> None:
         if not isinstance(camera, Camera):
             raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
-        self._camera = camera
+        with self._lock:
+            self._refuse_while_in_use("camera")
+            self._camera = camera
 
     @property
     def meshes(self) -> tuple[Mesh, ...]:
@@ -401,9 +461,10 @@ class Scene:
         if not np.all(np.isfinite(v)):
             row = int(np.argwhere(~np.isfinite(v))[0][0])
             raise ValueError(f"{name}: vertex {row} is not finite (NaN or Inf): {v[row].tolist()}")
-        if np.abs(v).max() > 1e30:
+        if np.abs(v).max() > COORDINATE_LIMIT:
             raise ValueError(
-                f"{name}: vertex coordinates beyond 1e30 cannot be rendered in float32"
+                f"{name}: vertex coordinates beyond 1e12 cannot be rendered in float32 "
+                "(distances, areas and pdfs leave its range)"
             )
         tris = _triangulate(faces, len(v), name)
         rho = _colour(reflectance, f"{name}: reflectance", upper=1.0)
@@ -436,10 +497,30 @@ class Scene:
                 raise ValueError(f"{name}: every triangle has zero area")
         for arr in (v, tris, areas):
             arr.flags.writeable = False
-        self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material))
-        self._compiled = None
-        self._checked_facing = set()
-        return len(self._meshes) - 1
+        with self._lock:
+            self._refuse_while_in_use("add_mesh")
+            self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material))
+            self._compiled = None
+            self._checked_facing = set()
+            return len(self._meshes) - 1
+
+    def _refuse_while_in_use(self, what: str) -> None:
+        if self._users:
+            raise RuntimeError(
+                f"Scene.{what}: the scene is being rendered or solved (in another thread); "
+                "a scene is frozen while a render or solve uses it, change it before or after"
+            )
+
+    @contextlib.contextmanager
+    def _in_use(self) -> Iterator[None]:
+        """Freeze the description while a render or solve reads it (add_mesh raises)."""
+        with self._lock:
+            self._users += 1
+        try:
+            yield
+        finally:
+            with self._lock:
+                self._users -= 1
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Axis-aligned bounding box ``(min, max)`` of all vertices."""
@@ -462,6 +543,13 @@ class Scene:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         if self._camera is None and camera is None:
             raise ValueError("scene has no camera: pass camera=dualight.Camera(...)")
+        lo, hi = self.bounds()
+        if float(np.max(hi - lo)) < SMALLEST_EXTENT:
+            raise ValueError(
+                f"scene is {float(np.max(hi - lo)):.3g} across: the float32 core cannot "
+                f"resolve scenes smaller than {SMALLEST_EXTENT:g}; scale it up (radiance does "
+                "not depend on scale)"
+            )
         self._warn_emitters_facing_nothing(camera or self._camera)
 
     def emitters_facing_nothing(self, camera: Camera | None = None) -> list[str]:

@@ -49,7 +49,9 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
         const std::function<double()> elapsed = Stopwatch();
         auto run = run_interruptible([&] { return start_up(*scene, camera, options, control, elapsed); }, control,
                                      progress);
-        return finished(run, py::cast(std::move(run.result)));
+        // Another exception than Ctrl-C's is raised here with the partial result on it.
+        if (run.raised) finished(run, py::cast(std::move(run.result)));
+        return std::move(run.result);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(),
       "The start-up of an MLT render (direct light, pilot, bootstrap, chain starts), run once; "
@@ -73,7 +75,9 @@ void bind_method(py::module_& m, const StartUp& start_up, const Chains& chains, 
               return part;
             },
             control, progress);
-        return finished(run, py::cast(std::move(run.result)));
+        // Another exception than Ctrl-C's is raised here with the partial result on it.
+        if (run.raised) finished(run, py::cast(std::move(run.result)));
+        return std::move(run.result);
       },
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("start"), py::arg("first_chain"),
       py::arg("chain_count"), py::arg("progress") = py::none(),

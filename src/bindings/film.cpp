@@ -1,6 +1,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/typing.h>
 
 #include "bindings/numpy_util.h"
 #include "bindings/render_result.h"
@@ -19,6 +20,13 @@ std::vector<T> flat_of(const py::handle& value, size_t size, const char* name) {
                           " elements");
   }
   return std::vector<T>(a.data(), a.data() + a.size());
+}
+
+// A Python str of `text`, with bytes that are not UTF-8 replaced by U+FFFD.
+py::str utf8_or_replaced(const std::string& text) {
+  PyObject* decoded = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+  if (decoded == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(decoded);
 }
 
 }  // namespace
@@ -74,7 +82,11 @@ void bind_film(py::module_& m) {
           img = read_image(path);
         }
         auto pixels = to_numpy(std::move(img.pixels), {img.height, img.width, img.channels});
-        return py::make_tuple(pixels, img.metadata, img.low_dynamic_range);
+        // Attributes written by other programs need not be UTF-8: undecodable bytes become
+        // U+FFFD instead of a UnicodeDecodeError that names no file.
+        py::typing::Dict<py::str, py::str> metadata;
+        for (const auto& [key, value] : img.metadata) metadata[utf8_or_replaced(key)] = utf8_or_replaced(value);
+        return py::make_tuple(pixels, metadata, img.low_dynamic_range);
       },
       py::arg("path"), "Reads an image: (H x W x C float32 pixels, metadata dict, is_low_dynamic_range).");
 }

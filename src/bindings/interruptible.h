@@ -47,8 +47,9 @@ inline void keep(py::error_already_set&& e, bool& keyboard_interrupt,
 
 // `result` (the binding's Python form of run.result), or run.raised raised again with `result`
 // as its `partial_result` (None where nothing partial is worth keeping).
-template <class Result>
-py::object finished(Interruptible<Result>& run, py::object result) {
+// Returns `result` as the type it came as (py::dict keeps the stubs' return types precise).
+template <class Result, class Python>
+Python finished(Interruptible<Result>& run, Python result) {
   if (!run.raised) return result;
   if (!result.is_none()) {
     try {

@@ -257,11 +257,19 @@ void bind_radiosity(py::module_& m) {
       .def_property_readonly("shots", &SouthwellSolver::shots);
 
   py::class_<DirectSolver>(m, "DirectSolver", "Dense LU per channel; solves M x = b and M^T x = b.")
-      .def(py::init([](std::shared_ptr<const RadiositySystem> s, int threads) {
-             py::gil_scoped_release release;
-             return std::make_unique<DirectSolver>(s, threads);
+      .def(py::init([](std::shared_ptr<const RadiositySystem> s, int threads, const py::object& progress) {
+             // The dense factorisation takes seconds at thousands of patches: interruptible.
+             RenderControl control;
+             auto run =
+                 run_interruptible([&] { return std::make_unique<DirectSolver>(s, threads, &control); }, control, progress);
+             if (run.keyboard_interrupt) {
+               PyErr_SetNone(PyExc_KeyboardInterrupt);
+               throw py::error_already_set();
+             }
+             finished(run, py::none());  // a factorisation cut short is unusable: nothing to keep
+             return std::move(run.result);
            }),
-           py::arg("system"), py::arg("threads") = 0)
+           py::arg("system"), py::arg("threads") = 0, py::arg("progress") = py::none())
       .def(
           "solve",
           [](const DirectSolver& d, const DoubleArray& rhs, bool dual) {
@@ -304,18 +312,28 @@ void bind_radiosity(py::module_& m) {
                        const py::array_t<uint32_t, py::array::c_style | py::array::forcecast>& prim,
                        const py::array_t<float, py::array::c_style | py::array::forcecast>& b1,
                        const py::array_t<float, py::array::c_style | py::array::forcecast>& b2, double weight,
-                       const HierarchicalOptions& options) {
+                       const HierarchicalOptions& options, const py::object& progress) {
              if (prim.size() != b1.size() || prim.size() != b2.size()) {
                throw py::value_error("receiver arrays differ in length");
              }
              ReceiverSamples r{std::vector<uint32_t>(prim.data(), prim.data() + prim.size()),
                                std::vector<float>(b1.data(), b1.data() + b1.size()),
                                std::vector<float>(b2.data(), b2.data() + b2.size()), weight};
-             py::gil_scoped_release release;  // the initial linking is O(triangles^2)
-             return std::make_unique<HierarchicalSolver>(*scene, std::move(r), options);
+             // The initial linking is O(triangles^2): interruptible, with progress per triangle.
+             RenderControl control;
+             auto run = run_interruptible(
+                 [&] { return std::make_unique<HierarchicalSolver>(*scene, std::move(r), options, &control); },
+                 control, progress);
+             if (run.keyboard_interrupt) {
+               PyErr_SetNone(PyExc_KeyboardInterrupt);
+               throw py::error_already_set();
+             }
+             finished(run, py::none());  // a solver cut short is incomplete: nothing to keep
+             return std::move(run.result);
            }),
            py::arg("scene"), py::arg("receiver_prim"), py::arg("receiver_b1"), py::arg("receiver_b2"),
-           py::arg("receiver_weight"), py::arg("options"), py::keep_alive<1, 2>())
+           py::arg("receiver_weight"), py::arg("options"), py::arg("progress") = py::none(),
+           py::keep_alive<1, 2>())
       .def(
           "step",
           [](HierarchicalSolver& solver, const py::object& progress) {

@@ -1,11 +1,29 @@
 #include "geometry/scene.h"
 
 #include <cmath>
+#include <tuple>
+#include <utility>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace dualight {
+
+// The unit normal and twice the area of a triangle whose cross product's squared length leaves
+// float's range (edges beyond about 1.4e9 overflow it, below about 1e-10 underflow): in double.
+// A Cornell box scaled by 1e7 had normals of 0 and infinite areas, and its direct light failed.
+std::pair<Vec3, float> Scene::normal_and_double_area(uint32_t prim) const {
+  double e[2][3];
+  for (int k = 0; k < 2; ++k) {
+    for (int a = 0; a < 3; ++a) e[k][a] = static_cast<double>(vertex(prim, k + 1)[a]) - vertex(prim, 0)[a];
+  }
+  const double c[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                       e[0][0] * e[1][1] - e[0][1] * e[1][0]};
+  const double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  if (!(len > 0.0)) return {Vec3(0.f), 0.f};
+  return {Vec3(static_cast<float>(c[0] / len), static_cast<float>(c[1] / len), static_cast<float>(c[2] / len)),
+          static_cast<float>(len)};
+}
 
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
              std::vector<Material> materials, std::vector<Emitter> emitters)
@@ -38,17 +56,21 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     bounds_min_ = vmin(bounds_min_, p);
     bounds_max_ = vmax(bounds_max_, p);
   }
+  const float extent = max_component(bounds_max_ - bounds_min_);
+  if (extent < 1.f) offset_scale_ = std::exp2(std::floor(std::log2(extent)));
 
   normal_.resize(n_triangles);
   area_.resize(n_triangles);
   emitter_of_prim_.assign(n_triangles, kNoEmitter);
   for (uint32_t prim = 0; prim < n_triangles; ++prim) {
     const Vec3 c = cross(vertex(prim, 1) - vertex(prim, 0), vertex(prim, 2) - vertex(prim, 0));
-    const float len = length(c);
+    float len = length(c);
+    Vec3 normal = c / len;
+    if (!std::isfinite(len) || !(len > 1e-30f)) std::tie(normal, len) = normal_and_double_area(prim);
     if (!(len > 0.f)) {
       throw std::invalid_argument("triangle " + std::to_string(prim) + " has zero area");
     }
-    normal_[prim] = c / len;
+    normal_[prim] = normal;
     area_[prim] = 0.5f * len;
     const Color& Le = materials_[material_of_[prim]].emission;
     if (!is_black(Le)) {
@@ -146,7 +168,7 @@ struct VisibilityQuery {
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
   const Vec3 d = p1 - p0;
-  const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
+  const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
   // Aimed at p1 itself (t = 1), so surfaces beyond it never count; any other surface before it
   // blocks, however close to p1 it stands, so walls meeting the target's surface do not leak.
   const float scale = std::max(1.f, max_component(vmax(vmax(p1, -p1), vmax(o0, -o0))));
@@ -157,7 +179,7 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
   const Vec3 d = p1 - p0;
-  const Vec3 o0 = offset_ray_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
+  const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
   return !accel_->occluded(Ray{o0, p1 - o0, 1.f - 1e-5f});
 }
 

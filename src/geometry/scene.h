@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/ray.h"
@@ -66,6 +67,10 @@ class Scene {
     return {&emitters_[i], emitter_sampler_.pmf(i)};
   }
   float emitter_pmf(const Emitter& e) const { return emitter_sampler_.pmf(static_cast<size_t>(&e - emitters_.data())); }
+  // The scale offset_ray_origin (core/ray.h) uses here: the largest side of the bounding box,
+  // capped at 1 (a power of two, so offsets stay exact multiples).
+  float offset_scale() const { return offset_scale_; }
+  Vec3 spawn_origin(const Vec3& p, const Vec3& n) const { return offset_ray_origin(p, n, offset_scale_); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
@@ -84,6 +89,7 @@ class Scene {
   bool visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const;
 
  private:
+  std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;
@@ -96,6 +102,7 @@ class Scene {
   std::vector<uint32_t> emitter_of_prim_;   // index into emitters_, kNoEmitter for the others
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
+  float offset_scale_ = 1.f;
   SceneFeatures features_;
   std::unique_ptr<EmbreeAccel> accel_;
 };

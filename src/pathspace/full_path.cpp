@@ -84,7 +84,7 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
 }
 
 bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters) {
-  const Vec3 o = from.on_surface() ? offset_ray_origin(from.p, dot(d, from.n) > 0.f ? from.n : -from.n) : from.p;
+  const Vec3 o = from.on_surface() ? scene.spawn_origin(from.p, dot(d, from.n) > 0.f ? from.n : -from.n) : from.p;
   SurfaceHit h;
   ++counters.rays;
   if (!scene.intersect(Ray{o, d}, h)) return false;

@@ -90,7 +90,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     prev_pdf_w = bs.pdf_w;
     prev_delta = bs.delta;
     const Vec3 wi_world = frame.to_world(bs.wi);
-    ray = Ray{offset_ray_origin(hit.p, bs.wi.z > 0.f ? ns : -ns), wi_world};
+    ray = Ray{scene.spawn_origin(hit.p, bs.wi.z > 0.f ? ns : -ns), wi_world};
 
     if (depth >= opt.rr_depth) {
       const float q = std::min(max_component(beta), 0.95f);

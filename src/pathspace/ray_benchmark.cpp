@@ -31,7 +31,7 @@ RayCastStats cast_random_rays(const Scene& scene, const PinholeCamera& camera, u
   for (uint64_t i = 0; i < n_rays; ++i) {
     const Origin& o = origins[rng.next_uint() % origins.size()];
     const Vec3 d = Frame::from_normal(o.n).to_world(square_to_cosine_hemisphere({rng.next_float(), rng.next_float()}));
-    rays.push_back({offset_ray_origin(o.p, o.n), d});
+    rays.push_back({scene.spawn_origin(o.p, o.n), d});
   }
   constexpr size_t kChunk = 4096;
   const size_t n_chunks = (rays.size() + kChunk - 1) / kChunk;

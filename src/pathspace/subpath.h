@@ -72,7 +72,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
       beta /= q;
       throughput /= q;
     }
-    ray = Ray{offset_ray_origin(cur.p, bs.wi.z > 0.f ? cur.n : -cur.n), frame.to_world(bs.wi)};
+    ray = Ray{scene.spawn_origin(cur.p, bs.wi.z > 0.f ? cur.n : -cur.n), frame.to_world(bs.wi)};
   }
 }
 
@@ -112,7 +112,7 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   const Vertex& y0 = path.back();
   EmitterDirection d;
   if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, sampler.next_2d(), d)) return;
-  const Vec3 origin = y0.on_surface() ? offset_ray_origin(y0.p, y0.n) : y0.p;
+  const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : y0.p;
   subpath_detail::random_walk(scene, Ray{origin, d.w}, sampler, d.beta, d.pdf_w,
                               max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);
 }

@@ -154,9 +154,10 @@ struct RowCounters {
 // that arrive (none in a convex enclosure, where every facing pair sees each other).
 class RowIntegrator {
  public:
-  RowIntegrator(const Scene& patches, const FormFactorOptions& options, bool unoccluded)
+  RowIntegrator(const Scene& patches, const FormFactorOptions& options, bool unoccluded, const RenderControl& control)
       : patches_(patches),
         options_(options),
+        control_(control),
         rule_(triangle_rule(options.quadrature)),
         unoccluded_(unoccluded),
         sqrt_rays_(static_cast<int>(std::lround(std::sqrt(options.shadow_rays)))),
@@ -180,7 +181,7 @@ class RowIntegrator {
                    q.b0 * ti.v[0].y + q.b1 * ti.v[1].y + q.b2 * ti.v[2].y,
                    q.b0 * ti.v[0].z + q.b1 * ti.v[1].z + q.b2 * ti.v[2].z};
     }
-    for (uint32_t j = 0; j < tri_.size(); ++j) {
+    for (uint32_t j = 0; j < tri_.size() && !control_.cancelled(); ++j) {
       if (j == i) continue;  // a planar patch does not see itself
       const Corners& tj = tri_[j];
       // Exact culls: the planes are shared by all points of each patch.
@@ -231,6 +232,7 @@ class RowIntegrator {
   int visible_rays(const Vec3& x, const Vec3& n, uint32_t i, uint32_t j, Pcg32& rng) const {
     int visible = 0;
     for (int s = 0; s < options_.shadow_rays; ++s) {
+      if ((s & 255) == 255 && control_.cancelled()) break;
       Point2 u{rng.next_float(), rng.next_float()};
       if (square_strata_) {
         u = {(static_cast<float>(s % sqrt_rays_) + u.u) / static_cast<float>(sqrt_rays_),
@@ -248,6 +250,7 @@ class RowIntegrator {
 
   const Scene& patches_;
   const FormFactorOptions& options_;
+  const RenderControl& control_;  // checked per pair and every 256 shadow rays: a row can take long
   const std::vector<QuadraturePoint>& rule_;
   bool unoccluded_;
   int sqrt_rays_;
@@ -308,7 +311,8 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
   if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {
     throw std::invalid_argument("scatters and receivers need one entry per patch");
   }
-  const RowIntegrator integrator(patches, options, options.skip_unneeded && patches.features().convex_enclosure);
+  const RowIntegrator integrator(patches, options, options.skip_unneeded && patches.features().convex_enclosure,
+                                 control);
   control.total.store(n);
   const Stopwatch start;
   std::vector<Row> rows(n);

@@ -34,7 +34,8 @@ void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>&
 
 }  // namespace
 
-HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options)
+HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
+                                       RenderControl* control)
     : scene_(scene), receiver_(std::move(receiver)), options_(options) {
   if (!(options_.epsilon > 0.0)) throw std::invalid_argument("epsilon must be > 0");
   if (options_.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
@@ -67,23 +68,30 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     if (receiver_.prim[k] >= roots_) throw std::invalid_argument("receiver sample names a missing triangle");
   }
 
-  // Initial links between every pair of input triangles that face each other and see each other.
+  link_roots(control);
+  assign_receiver();
+}
+
+// Initial links between every pair of input triangles that face each other and see each other.
+void HierarchicalSolver::link_roots(RenderControl* control) {
+  if (control != nullptr) control->total.store(roots_);
   std::vector<std::vector<Link>> per_root(roots_);
   std::atomic<uint64_t> rays{0}, skipped{0};
   parallel_for_each_index(options_.threads, roots_, [&](size_t i) {
     uint64_t local = 0, local_skipped = 0;
     for (uint32_t j = 0; j < roots_; ++j) {
+      if (control != nullptr && (j & 1023) == 0 && control->cancelled()) break;
       if (j == i || !facing(elements_[i], elements_[j])) continue;
       const Link l = make_link(static_cast<uint32_t>(i), j, local, local_skipped);
       if (l.F > 0.f || l.F_oracle > 0.f) per_root[i].push_back(l);
     }
     rays.fetch_add(local);
     skipped.fetch_add(local_skipped);
+    if (control != nullptr) control->done.fetch_add(1, std::memory_order_relaxed);
   });
   rays_ += rays.load();
   rays_skipped_ += skipped.load();
   for (auto& v : per_root) links_.insert(links_.end(), v.begin(), v.end());
-  assign_receiver();
 }
 
 bool HierarchicalSolver::facing(const Element& a, const Element& b) const {
@@ -265,7 +273,10 @@ std::vector<uint32_t> HierarchicalSolver::flag_links() const {
 
 // Splits the larger end of each flagged link (at most max_links / 3 of them) and links its
 // children in its place; fills st.links_refined and st.link_limit.
-void HierarchicalSolver::refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st) {
+// Cancelled (`control`), it keeps the links it had: the split elements stay, as leaves that take
+// their parents' gathered radiosity, and the hierarchy stays consistent.
+void HierarchicalSolver::refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st,
+                                      const RenderControl* control) {
   // Each refinement adds three links: stop before max_links (BF in a scene where everything
   // emits would otherwise refine until memory runs out).
   const uint64_t room = options_.max_links > links_.size() ? (options_.max_links - links_.size()) / 3 : 0;
@@ -297,6 +308,7 @@ void HierarchicalSolver::refine_links(std::vector<uint32_t> to_refine, Hierarchi
   constexpr size_t kChunk = 256;
   parallel_for_each_index(options_.threads, (pending.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
     uint64_t local = 0, local_skipped = 0;
+    if (control != nullptr && control->cancelled()) return;
     for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
       const auto [r, s] = pending[k];
       created[k] =
@@ -307,6 +319,7 @@ void HierarchicalSolver::refine_links(std::vector<uint32_t> to_refine, Hierarchi
   });
   rays_ += rays.load();
   rays_skipped_ += skipped.load();
+  if (control != nullptr && control->cancelled()) return;
   for (const Link& l : created) {
     // A link the oracle sees as occluded is never refined: dropping it when the transport
     // estimate is 0 too loses nothing.
@@ -377,8 +390,9 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   if (control != nullptr) control->total.store(static_cast<uint64_t>(options_.sweeps) + 1);
   // Refine (from the second step on: the oracles need a solution).
   if (iteration_ > 0) {
-    refine_links(flag_links(), st);
-    if (st.links_refined > 0) assign_receiver();
+    const size_t elements_before = elements_.size();
+    refine_links(flag_links(), st, control);
+    if (elements_.size() != elements_before) assign_receiver();
   }
   if (control != nullptr) control->done.store(1);
   const double change = solve_links(control);
@@ -394,7 +408,7 @@ HierarchicalStep HierarchicalSolver::step(RenderControl* control) {
   st.rays_skipped = rays_skipped_ - skipped_before;
   st.memory_bytes = elements_.size() * sizeof(Element) + links_.capacity() * sizeof(Link);
   st.residual = change;
-  st.converged = iteration_ > 1 && st.links_refined == 0 && !st.link_limit;
+  st.converged = iteration_ > 1 && st.links_refined == 0 && !st.link_limit && !(control && control->cancelled());
   st.seconds = t0();
   return st;
 }

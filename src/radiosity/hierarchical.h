@@ -53,8 +53,11 @@ struct ReceiverSamples {
 
 class HierarchicalSolver {
  public:
-  // `scene` provides the input triangles (the roots) and their materials.
-  HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options);
+  // `scene` provides the input triangles (the roots) and their materials. The initial linking
+  // is O(triangles^2): `control` (optional) counts its rows and can cancel it, which leaves the
+  // solver unusable (cancelled() true): the caller discards it.
+  HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
+                     RenderControl* control = nullptr);
 
   // One refine-and-solve iteration: refine every link the oracle flags (none on the first call),
   // then Gauss-Seidel sweeps with push-pull for radiosity and for importance.
@@ -112,7 +115,8 @@ class HierarchicalSolver {
   void subdivide(uint32_t e);
   // The three parts of a step: the oracle's flags, the refinement, the solve of both systems.
   std::vector<uint32_t> flag_links() const;
-  void refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st);
+  void refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st, const RenderControl* control);
+  void link_roots(RenderControl* control);
   double solve_links(RenderControl* control);
   void push_pull_radiosity(uint32_t e, const double down[3]);
   void push_pull_importance(uint32_t e, const double down[3]);

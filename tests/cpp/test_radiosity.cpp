@@ -1,8 +1,13 @@
-// Form-factor kernel, CSR transpose and the solvers on a system small enough to solve by hand.
+// Form-factor kernel, CSR transpose, the blocked dense LU and the solvers on a system small enough
+// to solve by hand.
+#include <Eigen/LU>
 #include <cmath>
 #include <memory>
 
 #include "check.h"
+#include "core/render_control.h"
+#include "core/rng.h"
+#include "radiosity/dense_lu.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/solve_direct.h"
 #include "radiosity/solve_gathering.h"
@@ -82,4 +87,29 @@ TEST_CASE("solvers_agree_on_a_two_patch_enclosure") {
   CHECK_NEAR(gs.solution()[0], 2.0 / 3.0, 1e-12);
   CHECK_NEAR(sw.solution()[3], 2.0 / 3.0, 1e-12);
   CHECK((jacobi.residual() < 1e-12 && gs.residual() < 1e-12 && sw.residual() < 1e-12));
+}
+
+TEST_CASE("dense_lu_solves_both_sides_like_eigens_lu_and_stops_when_cancelled") {
+  // A random non-symmetric matrix needing row swaps (its diagonal is small), 300 x 300: three
+  // panels of 128, the last one narrower.
+  constexpr int n = 300;
+  Pcg32 rng(11, 0);
+  Eigen::MatrixXd a(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) a(i, j) = rng.next_float() - 0.5 + (i == j ? 1e-3 : 0.0);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b(i) = rng.next_float();
+  DenseLu lu;
+  RenderControl control;
+  REQUIRE(lu.compute(a, &control));
+  CHECK(control.done.load() == DenseLu::panels(n));
+  const Eigen::PartialPivLU<Eigen::MatrixXd> reference(a);
+  CHECK((lu.solve(b) - reference.solve(b)).norm() < 1e-9 * reference.solve(b).norm());
+  const Eigen::VectorXd xt = lu.solve_transposed(b);
+  CHECK((a.transpose() * xt - b).norm() < 1e-10 * b.norm() * a.norm() * xt.norm());
+  // The control: a wrong transposition (solve instead of solve_transposed) fails that check.
+  const Eigen::VectorXd wrong = lu.solve(b);
+  CHECK((a.transpose() * wrong - b).norm() > 1e-3 * b.norm());
+  control.cancel = true;
+  CHECK_FALSE(DenseLu().compute(a, &control));
 }

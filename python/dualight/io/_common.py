@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from typing import Any
 
@@ -21,23 +22,27 @@ def _existing_file(path: PathLike, what: str) -> Path:
     return p
 
 
-def _trimesh_geometries(path: Path, file_type: str) -> list[tuple[str, Any]]:
+def _trimesh_geometries(
+    path: Path, file_type: str, text: str | None = None
+) -> list[tuple[str, Any]]:
     """The triangle meshes of an OBJ or PLY file as ``(name, trimesh.Trimesh)`` pairs, in file
-    order, with vertices neither merged nor reordered."""
+    order, with vertices neither merged nor reordered. ``text``, if given, is read instead of
+    the file's contents (files it names are still looked up beside ``path``)."""
     import trimesh
+    import trimesh.resolvers
 
-    if file_type == "obj":
-        try:
-            path.read_bytes().decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise ValueError(
-                f"cannot read OBJ file {str(path)!r}: not a UTF-8 or ASCII text file "
-                f"({exc.reason} at byte {exc.start})"
-            ) from None
+    if file_type == "ply":
+        _check_ply_header(path)
+    source: Any = str(path)
+    resolver = None
+    if text is not None:
+        source = io.BytesIO(text.encode("utf-8"))
+        resolver = trimesh.resolvers.FilePathResolver(str(path))
     try:
         loaded = trimesh.load(
-            str(path),
+            source,
             file_type=file_type,
+            resolver=resolver,
             force="scene",
             process=False,
             maintain_order=True,
@@ -52,6 +57,48 @@ def _trimesh_geometries(path: Path, file_type: str) -> list[tuple[str, Any]]:
     if not meshes:
         raise ValueError(f"{file_type.upper()} file {str(path)!r} has no triangles or polygons")
     return meshes
+
+
+# A PLY element count beyond this is refused before the body is read: the core holds vertex
+# indices in 32 bits, and trimesh would otherwise allocate for the declared count (or report
+# the short file as having no triangles).
+_PLY_MAX_ELEMENTS = 2**31 - 1
+
+
+def _check_ply_header(path: Path) -> None:
+    """Refuse a PLY file whose header declares absurd element counts, or more elements than
+    its body can hold, naming the element; before anything is allocated for them."""
+    with path.open("rb") as file:
+        header = file.read(65536)
+    end = header.find(b"end_header")
+    if not header.startswith(b"ply") or end < 0:
+        return  # trimesh reports a malformed header itself
+    newline = header.find(b"\n", end)
+    body = path.stat().st_size - (newline + 1 if newline >= 0 else len(header))
+    # Each element with a property takes at least one byte in a binary body and two (a number
+    # and a separator) in an ASCII one.
+    fits = body if b"binary" in header[:end] else (body + 1) // 2
+    elements: list[tuple[str, int, bool]] = []
+    for line in header[:end].splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == b"element":
+            name = words[1].decode("ascii", "replace")
+            try:
+                elements.append((name, int(words[2]), False))
+            except ValueError:
+                raise ValueError(
+                    f"cannot read PLY file {str(path)!r}: element {name!r} has count "
+                    f"{words[2].decode('ascii', 'replace')!r}, not a whole number"
+                ) from None
+        elif words[:1] == [b"property"] and elements:
+            elements[-1] = (elements[-1][0], elements[-1][1], True)
+    for name, n, has_properties in elements:
+        if n < 0 or n > _PLY_MAX_ELEMENTS or (has_properties and n > fits):
+            raise ValueError(
+                f"cannot read PLY file {str(path)!r}: its header declares {n} {name!r} "
+                f"elements, more than its {body}-byte body can hold"
+                + (f" (and more than {_PLY_MAX_ELEMENTS})" if n > _PLY_MAX_ELEMENTS else "")
+            )
 
 
 def _mesh_arrays(geom: Any, where: str) -> tuple[np.ndarray, np.ndarray]:

@@ -698,6 +698,24 @@ def _integrator(ctx: _Context, element: ET.Element, settings: dict[str, Any]) ->
             _integrator(ctx, child, settings)
 
 
+# Deeper nesting than any scene needs (scene > shape > bsdf > twosided's bsdf > texture > ...
+# is 6) is refused before the elements are read recursively.
+_MAX_DEPTH = 64
+
+
+def _check_depth(ctx: _Context, root: ET.Element) -> None:
+    """Refuse elements nested deeper than ``_MAX_DEPTH``, naming the deepest one's path."""
+    stack = [(root, 1)]
+    while stack:
+        element, depth = stack.pop()
+        if depth > _MAX_DEPTH:
+            raise ctx.error(
+                element,
+                f"elements are nested more than {_MAX_DEPTH} deep; no Mitsuba scene needs that",
+            )
+        stack.extend((child, depth + 1) for child in element)
+
+
 def _parse(
     path: PathLike, params: Mapping[str, Any] | None, build: bool, sphere_subdivisions: int
 ) -> tuple[Scene, dict[str, Any]]:
@@ -709,6 +727,7 @@ def _parse(
         raise ValueError(f"{str(xml_path)!r} is not well-formed XML: {exc}") from None
     if root.tag != "scene":
         raise ctx.error(root, "the root element must be <scene>")
+    _check_depth(ctx, root)
     version = root.get("version", "3.0.0")
     if version.split(".")[0] not in ("2", "3"):
         raise ctx.error(root, f"scene version {version!r}: only Mitsuba 2 and 3 files are read")

@@ -79,6 +79,67 @@ def _read_mtl_files(obj: Path) -> dict[str, dict[str, Any]]:
     return materials
 
 
+def _obj_text(obj: Path) -> tuple[str, list[str]]:
+    """The OBJ file's text with its relative (negative) indices made absolute, and the material
+    names its ``usemtl`` statements use, in order.
+
+    The OBJ format counts a negative index back from the elements read *so far*; trimesh
+    counts it from the end of the file, so such indices are resolved here first. Index 0 and a
+    relative index before the first element are refused with the line number."""
+    try:
+        text = obj.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(
+            f"cannot read OBJ file {str(obj)!r}: not a UTF-8 or ASCII text file "
+            f"({exc.reason} at byte {exc.start})"
+        ) from None
+    except OSError as exc:
+        raise ValueError(f"cannot read OBJ file {str(obj)!r}: {exc}") from exc
+    counts = {"v": 0, "vt": 0, "vn": 0}
+    materials: list[str] = []
+    lines = text.splitlines()
+    changed = False
+    for number, line in enumerate(lines, start=1):
+        words = line.split()
+        if not words:
+            continue
+        if words[0] in counts:
+            counts[words[0]] += 1
+        elif words[0] == "usemtl" and len(words) > 1:
+            materials.append(line.split(maxsplit=1)[1].strip())
+        elif words[0] in ("f", "l", "p"):
+            resolved = [_absolute(w, counts, obj, number) for w in words[1:]]
+            if resolved != words[1:]:
+                lines[number - 1] = " ".join([words[0], *resolved])
+                changed = True
+    return ("\n".join(lines) + "\n" if changed else text), materials
+
+
+def _absolute(token: str, counts: dict[str, int], obj: Path, line: int) -> str:
+    """One face corner ``v[/vt[/vn]]`` with negative indices resolved against ``counts``."""
+    parts = token.split("/")
+    for i, (part, kind) in enumerate(zip(parts, ("v", "vt", "vn"), strict=False)):
+        if not part:
+            continue
+        try:
+            index = int(part)
+        except ValueError:
+            continue  # trimesh reports what is not a number
+        if index == 0:
+            raise ValueError(
+                f"OBJ file {str(obj)!r}, line {line}: face index 0 in {token!r} "
+                "(OBJ indices start at 1; negative ones count back from the last element read)"
+            )
+        if index < 0:
+            if -index > counts[kind]:
+                raise ValueError(
+                    f"OBJ file {str(obj)!r}, line {line}: relative index {index} in {token!r} "
+                    f"refers before the first {kind!r} ({counts[kind]} read so far)"
+                )
+            parts[i] = str(counts[kind] + 1 + index)
+    return "/".join(parts)
+
+
 def load_obj(
     path: PathLike,
     *,
@@ -137,7 +198,18 @@ def load_obj(
     elif not isinstance(scene, Scene):
         raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
     mtl = _read_mtl_files(obj)
-    geometries = _trimesh_geometries(obj, "obj")
+    text, used = _obj_text(obj)
+    undefined = list(dict.fromkeys(m for m in used if m not in mtl))
+    if undefined:
+        warnings.warn(
+            f"{str(obj)!r}: usemtl names materials no mtllib defines "
+            f"({', '.join(repr(m) for m in undefined[:10])}"
+            f"{', ...' if len(undefined) > 10 else ''}); their faces get default_reflectance "
+            f"{tuple(default_reflectance)} and no emission",
+            UserWarning,
+            stacklevel=2,
+        )
+    geometries = _trimesh_geometries(obj, "obj", text)
     ignored: dict[str, list[str]] = {}
     pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str]] = []
     for key, geom in geometries:

@@ -123,6 +123,9 @@ class HierarchicalSolver:
     samples_per_axis:
         Stratified camera samples per pixel and axis (1 to 64) that give the view's
         importance and measurement (see :func:`dualight.radiosity.solve`).
+    progress:
+        ``progress(done, total)``, called about every 100 ms while the input triangles are
+        linked (O(triangles^2)); Ctrl-C stops that linking (KeyboardInterrupt, no solver).
     """
 
     def __init__(
@@ -142,6 +145,7 @@ class HierarchicalSolver:
         max_links: int = _DEFAULT.max_links,
         skip: bool = _DEFAULT.skip_unneeded,
         samples_per_axis: int = 4,
+        progress: Callable[[int, int], None] | None = None,
     ) -> None:
         if min_area is not None and not min_area > 0:
             raise ValueError(f"min_area must be > 0, got {min_area!r}")
@@ -157,18 +161,37 @@ class HierarchicalSolver:
             max_links=max_links,
             skip_unneeded=skip,
         )
+        if not isinstance(scene, Scene):
+            raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
+        self.oracle, self.epsilon = oracle, epsilon
+        with scene._in_use():
+            self._build(scene, camera, window, seed, samples_per_axis, options, progress)
+
+    def _build(
+        self,
+        scene: Scene,
+        camera: Camera | None,
+        window: tuple[int, int, int, int] | None,
+        seed: int,
+        samples_per_axis: int,
+        options: _core.HierarchicalOptions,
+        progress: Callable[[int, int], None] | None,
+    ) -> None:
         require_diffuse(scene)
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera
         if cam is None:
             raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
-        self.scene, self.camera, self.oracle, self.epsilon = scene, cam, oracle, epsilon
+        self.scene, self.camera = scene, cam
+        self._mesh_count = len(scene.meshes)
         start = time.perf_counter()
         prim, b1, b2, weight = receiver_samples(
             scene, cam, window=window, seed=seed, samples_per_axis=samples_per_axis
         )
-        self._core = _core.HierarchicalSolver(scene._compile(), prim, b1, b2, weight, options)
+        self._core = _core.HierarchicalSolver(
+            scene._compile(), prim, b1, b2, weight, options, progress
+        )
         self.setup_seconds = time.perf_counter() - start
         self.history: list[HierarchicalStep] = []
 
@@ -208,6 +231,15 @@ class HierarchicalSolver:
 
     def solution(self) -> Solution:
         """The current leaves as a :class:`dualight.radiosity.Solution`."""
+        with self.scene._in_use():
+            if len(self.scene.meshes) != self._mesh_count:
+                raise RuntimeError(
+                    "HierarchicalSolver.solution: meshes were added to the scene after this "
+                    "solver was built; build a new solver for the new scene"
+                )
+            return self._solution()
+
+    def _solution(self) -> Solution:
         leaves = self._core.leaves()
         _, _, mesh_of_triangle = self.scene.triangle_arrays()
         n = len(leaves["area"])

@@ -12,6 +12,7 @@ Radiosity assumes diffuse surfaces: scenes with a :class:`~dualight.Mirror` or
 from __future__ import annotations
 
 import math
+import os
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -37,18 +38,57 @@ def require_diffuse(scene: Scene) -> None:
             )
 
 
+# Bytes a patch takes while a PatchMesh is built (numpy's peak, measured by tracemalloc at
+# 0.1 to 0.5 million patches: 295 to 345; tests/test_radiosity.py checks this bound holds).
+PATCH_BYTES = 360
+
+
+def _available_bytes() -> int | None:
+    """Memory the system can give without swapping (Linux's MemAvailable), or None."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def _check_memory(patches: float) -> None:
+    """Refuse a subdivision whose patches would not fit in the memory available now."""
+    needed = patches * PATCH_BYTES
+    available = _available_bytes()
+    if available is not None and needed > available:
+        raise MemoryError(
+            f"this subdivision makes {patches:.4g} patches, which need about "
+            f"{needed / 2**30:.3g} GiB ({PATCH_BYTES} bytes each) while building them, but "
+            f"{available / 2**30:.3g} GiB is available; use a larger max_edge or max_area"
+        )
+
+
 def _grid(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Barycentrics (b1, b2) of the grid vertices and the sub-triangles, for n divisions."""
-    ij = [(i, j) for i in range(n + 1) for j in range(n + 1 - i)]
-    index = {p: k for k, p in enumerate(ij)}
-    bary = np.array(ij, dtype=np.float64) / n
-    tris = []
-    for i in range(n):
-        for j in range(n - i):
-            tris.append((index[(i, j)], index[(i + 1, j)], index[(i, j + 1)]))
-            if i + j <= n - 2:
-                tris.append((index[(i + 1, j)], index[(i + 1, j + 1)], index[(i, j + 1)]))
-    return bary, np.array(tris, dtype=np.int64)
+    """Barycentrics (b1, b2) of the grid vertices and the sub-triangles, for n divisions.
+
+    Vertex (i, j), j <= n - i, is number ``i (n + 1) - i (i - 1) / 2 + j``; cell (i, j),
+    j < n - i, holds an upright triangle and, where i + j <= n - 2, an inverted one after it.
+    In numpy arrays throughout: Python tuples per vertex took over 100 bytes each."""
+    i = np.repeat(np.arange(n + 1), np.arange(n + 1, 0, -1))
+    j = np.arange(len(i)) - (i * (n + 1) - i * (i - 1) // 2)
+    bary = np.stack([i, j], axis=1).astype(np.float64) / n
+    ci = np.repeat(np.arange(n), np.arange(n, 0, -1))
+    cj = np.arange(len(ci)) - (ci * n - ci * (ci - 1) // 2)
+
+    def index(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return a * (n + 1) - a * (a - 1) // 2 + b
+
+    up = np.stack([index(ci, cj), index(ci + 1, cj), index(ci, cj + 1)], axis=1)
+    down = np.stack([index(ci + 1, cj), index(ci + 1, cj + 1), index(ci, cj + 1)], axis=1)
+    keep = np.stack([np.ones(len(ci), bool), ci + cj <= n - 2], axis=1).reshape(-1)
+    return bary, np.stack([up, down], axis=1).reshape(-1, 3)[keep].astype(np.int64)
 
 
 class PatchMesh:
@@ -95,7 +135,10 @@ class PatchMesh:
         grids: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         vertices, triangles, mesh_index = [], [], []
         offset = 0
-        for m, mesh in enumerate(scene.meshes):
+        # The number of patches first, to refuse what memory cannot hold before allocating.
+        planned = 0.0
+        subdivisions: list[np.ndarray] = []
+        for mesh in scene.meshes:
             corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             if max_edge is not None:
                 edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
@@ -105,8 +148,13 @@ class PatchMesh:
             # Counted in floats before any integer cast: max_edge=1e-100 overflowed int64 and
             # made 32 patches.
             per_edge = np.maximum(per_edge, 1.0)
-            if float((per_edge**2).sum()) + offset > 50_000_000:
+            planned += float((per_edge**2).sum())
+            if planned > 50_000_000:
                 raise ValueError("this subdivision would make more than 50 million patches")
+            subdivisions.append(per_edge)
+        _check_memory(planned)
+        for m, (mesh, per_edge) in enumerate(zip(scene.meshes, subdivisions, strict=True)):
+            corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             divisions = per_edge.astype(np.int64)
             for n in np.unique(divisions):
                 bary, sub = grids.setdefault(int(n), _grid(int(n)))

@@ -17,7 +17,7 @@ from dualight.radiosity.hierarchical import HierarchicalSolver, Oracle
 from dualight.radiosity.patches import PatchMesh
 from dualight.radiosity.solution import Solution, receiver
 from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
-from dualight.scene import Camera, Scene
+from dualight.scene import Camera, Scene, _freezes_scene
 
 # The core's defaults of the options these functions pass on.
 _FORM_FACTORS = _core.FormFactorOptions()
@@ -103,6 +103,13 @@ def _progress_of(
     return (progress if callable(progress) else None), None
 
 
+def _keep_partial(error: BaseException, partial: Solution) -> None:
+    try:
+        error.partial_result = partial  # type: ignore[attr-defined]
+    except (AttributeError, TypeError):  # an exception type without attributes: raised as it is
+        pass
+
+
 def _check_solve_arguments(scene: Any, camera: Any, tol: Any, max_iter: Any, seed: Any) -> None:
     """Reject bad arguments before any form factor is computed, naming the argument (every
     method, including ``"direct"``, which takes a single step and would ignore ``max_iter``)."""
@@ -120,6 +127,7 @@ def _check_solve_arguments(scene: Any, camera: Any, tol: Any, max_iter: Any, see
         raise ValueError(f"seed must be an integer in [0, 2**64), got {seed!r}")
 
 
+@_freezes_scene
 def solve(
     scene: Scene,
     method: RadiosityMethod = "direct",
@@ -202,24 +210,36 @@ def solve(
             "by importance"
         )
     if method == "hierarchical":
-        solver = HierarchicalSolver(
-            scene,
-            camera=camera,
-            window=window,
-            oracle=oracle,
-            epsilon=epsilon,
-            min_area=min_area,
-            shadow_rays=shadow_rays,
-            tolerance=tol,
-            seed=seed,
-            threads=threads or 0,
-            max_links=max_links,
-            skip=skip,
-            samples_per_axis=samples_per_axis,
-        )
+        callback, bar = _progress_of(progress, "hierarchical linking")
+        try:
+            solver = HierarchicalSolver(
+                scene,
+                camera=camera,
+                window=window,
+                oracle=oracle,
+                epsilon=epsilon,
+                min_area=min_area,
+                shadow_rays=shadow_rays,
+                tolerance=tol,
+                seed=seed,
+                threads=threads or 0,
+                max_links=max_links,
+                skip=skip,
+                samples_per_axis=samples_per_axis,
+                progress=callback,
+            )
+        finally:
+            if bar is not None:
+                bar.close()
         callback, bar = _progress_of(progress, "hierarchical refinement")
         try:
             solver.solve(max_iter=min(max_iter, 100), progress=callback)
+        except BaseException as error:
+            # Ctrl-C or another exception during a step: the hierarchy of the steps before it
+            # is a solution (coarser), kept on the exception as for renders.
+            if solver.history:
+                _keep_partial(error, solver.solution())
+            raise
         finally:
             if bar is not None:
                 bar.close()
@@ -284,7 +304,16 @@ def solve(
     def run(rhs: np.ndarray, dual: bool, factors: Any = None) -> tuple[np.ndarray, Any]:
         cls = SOLVERS[method]
         if cls is DirectSolver:
-            solver = DirectSolver(system, rhs, dual=dual, factors=factors, threads=n_threads)
+            callback, bar = (None, None)
+            if factors is None:
+                callback, bar = _progress_of(progress, "LU factorisation")
+            try:
+                solver = DirectSolver(
+                    system, rhs, dual=dual, factors=factors, threads=n_threads, progress=callback
+                )
+            finally:
+                if bar is not None:
+                    bar.close()
         elif method == "jacobi":
             solver = cls(system, rhs, dual=dual, threads=n_threads)  # type: ignore[call-arg]
         else:

@@ -13,6 +13,7 @@ Every solver has the same shape, so a notebook can watch any of them converge::
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -170,11 +171,16 @@ class DirectSolver(_Stepped):
         dual: bool = False,
         factors: _core.DirectSolver | None = None,
         threads: int = 0,
+        progress: Callable[[int, int], None] | None = None,
     ) -> None:
+        """``progress(done, total)`` is called about every 100 ms while the factors are
+        computed (panels of 128 columns, three channels); Ctrl-C stops the factorisation."""
         self._system = system
         self._rhs = np.ascontiguousarray(rhs, dtype=np.float64)
         self._dual = dual
-        self._factors = factors if factors is not None else _core.DirectSolver(system, threads)
+        self._factors = (
+            factors if factors is not None else _core.DirectSolver(system, threads, progress)
+        )
         self._x = np.zeros_like(self._rhs)
         self._residual = 1.0
         self.iteration = 0
