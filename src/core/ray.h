@@ -11,6 +11,7 @@ namespace dualight {
 struct Ray {
   Vec3 o, d;
   float tmax = std::numeric_limits<float>::infinity();
+  float tmin = 0.f;  // hits closer than this are ignored (rays from the eye: Scene::eye_clearance)
 };
 
 // Moves p off its surface along n by a few ulps of p's magnitude (integer steps on the float bits),

@@ -52,7 +52,7 @@ void fill_ray(const Ray& ray, RTCRay& r) {
   r.dir_x = ray.d.x;
   r.dir_y = ray.d.y;
   r.dir_z = ray.d.z;
-  r.tnear = 0.f;
+  r.tnear = ray.tmin;
   r.tfar = ray.tmax;
   r.time = 0.f;
   r.mask = 0xffffffffu;  // Embree 4 changed the default mask: always set it.

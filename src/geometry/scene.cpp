@@ -58,6 +58,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   }
   const float extent = max_component(bounds_max_ - bounds_min_);
   if (extent < 1.f) offset_scale_ = std::exp2(std::floor(std::log2(extent)));
+  eye_clearance_ = 1e-6f * extent;
 
   normal_.resize(n_triangles);
   area_.resize(n_triangles);
@@ -102,8 +103,19 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  const RayHit rh = accel_->intersect(ray);
+  RayHit rh = accel_->intersect(ray);
   if (!rh.hit()) return false;
+  if (rh.t == 0.f && starts_in_plane_of(ray, rh.prim)) {
+    // A ray leaving the edge where two walls meet starts in the other wall's plane, offset
+    // along its own normal only: Embree reports that wall at t = 0, a point the ray does not
+    // reach through it (it leaves the plane). Past it, the ray's real first hit (issue 18: a
+    // camera path went on from that point along the wall and its next connection left the
+    // closed cell). Rare: only exactly coplanar origins.
+    Ray past = ray;
+    past.tmin = std::numeric_limits<float>::min();
+    rh = accel_->intersect(past);
+    if (!rh.hit()) return false;
+  }
   const uint32_t prim = rh.prim;
   hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;
   hit.n = normal_[prim];
@@ -112,6 +124,10 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.material = &materials_[material_of_[prim]];
   hit.emitter = emitter_at(prim);
   return true;
+}
+
+bool Scene::starts_in_plane_of(const Ray& ray, uint32_t prim) const {
+  return dot(normal_[prim], ray.o - vertex(prim, 0)) == 0.f;
 }
 
 namespace {
@@ -180,7 +196,9 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
   const Vec3 d = p1 - p0;
   const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
-  return !accel_->occluded(Ray{o0, p1 - o0, 1.f - 1e-5f});
+  // To the eye, short of it by eye_clearance (surfaces through the pinhole do not block it).
+  const float stop = 1.f - eye_clearance_ / length(p1 - o0);
+  return !(stop > 0.f) || !accel_->occluded(Ray{o0, p1 - o0, stop});
 }
 
 }  // namespace dualight

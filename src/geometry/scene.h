@@ -71,6 +71,15 @@ class Scene {
   // capped at 1 (a power of two, so offsets stay exact multiples).
   float offset_scale() const { return offset_scale_; }
   Vec3 spawn_origin(const Vec3& p, const Vec3& n) const { return offset_ray_origin(p, n, offset_scale_); }
+  // Surfaces closer to the pinhole than this (1e-6 of the scene's extent) are not seen from it,
+  // by every estimator alike: rays leaving the eye start there (Ray::tmin), and connections to
+  // the eye stop there (visible_point). A pinhole lying on a wall saw the wall's back at t = 0
+  // in the path tracer while light tracing ignored it (issue 18).
+  float eye_clearance() const { return eye_clearance_; }
+  Ray eye_ray(Ray ray) const {
+    ray.tmin = eye_clearance_;
+    return ray;
+  }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
@@ -90,6 +99,7 @@ class Scene {
 
  private:
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
+  bool starts_in_plane_of(const Ray& ray, uint32_t prim) const;  // the origin exactly in prim's plane
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;
@@ -103,6 +113,7 @@ class Scene {
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
   float offset_scale_ = 1.f;
+  float eye_clearance_ = 0.f;
   SceneFeatures features_;
   std::unique_ptr<EmbreeAccel> accel_;
 };

@@ -84,10 +84,13 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
 }
 
 bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters) {
-  const Vec3 o = from.on_surface() ? scene.spawn_origin(from.p, dot(d, from.n) > 0.f ? from.n : -from.n) : from.p;
+  // Off a surface; from the eye past its clearance; from any other point as it is.
+  const Ray ray = from.on_surface() ? Ray{scene.spawn_origin(from.p, dot(d, from.n) > 0.f ? from.n : -from.n), d}
+                  : from.type == VertexType::Camera ? scene.eye_ray(Ray{from.p, d})
+                                                    : Ray{from.p, d};
   SurfaceHit h;
   ++counters.rays;
-  if (!scene.intersect(Ray{o, d}, h)) return false;
+  if (!scene.intersect(ray, h)) return false;
   hit = Vertex{};
   hit.type = VertexType::Surface;
   hit.p = h.p;

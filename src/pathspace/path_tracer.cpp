@@ -109,7 +109,7 @@ RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const 
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, false,
                                   connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
-    return trace_path(scene, camera.generate_ray(x, y), options, sampler, counters);
+    return trace_path(scene, scene.eye_ray(camera.generate_ray(x, y)), options, sampler, counters);
   };
   result.stats = with_sampler(options.sampler, [&](auto tag) {
     return drive_pixels<typename decltype(tag)::type>(result.film, driver, control, estimate);

@@ -88,7 +88,7 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
                     const WalkLimits& limits, Path& path,
                    TraceCounters& counters) {
   path.clear();
-  const Ray ray = camera.generate_ray(x, y);
+  const Ray ray = scene.eye_ray(camera.generate_ray(x, y));
   Vertex c;
   c.type = VertexType::Camera;
   c.p = ray.o;

@@ -157,3 +157,36 @@ TEST_CASE("visibility_from_and_to_points_on_the_edge_where_two_walls_meet") {
   CHECK(hidden == tried + tried_hidden);
   CHECK(reached == tried);
 }
+
+TEST_CASE("a_ray_leaving_the_plane_it_starts_in_does_not_hit_that_plane_at_t_zero") {
+  // Two walls meeting at the edge y = 0, z = 0: the floor z = 0 (normal +z) and the wall
+  // y = 0 (normal +y). A ray from the edge, offset along the floor's normal only, starts in the
+  // wall's plane; going into the room (+y, +z) it must not hit the wall at t = 0 (issue 18: a
+  // camera path continued from there along the wall and left a closed cell).
+  const Material white{Lambertian{Color(0.5f)}, Color(0.f)};
+  const Scene scene({0, 0, 0, 4, 0, 0, 4, 4, 0, 0, 4, 0,     // floor
+                     0, 0, 0, 0, 0, 4, 4, 0, 4, 4, 0, 0},  // wall y = 0
+                    {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}, {0, 0, 0, 0}, {white});
+  const Vec3 on_edge(2.f, 0.f, 0.f);
+  const Ray ray{scene.spawn_origin(on_edge, Vec3(0, 0, 1)), normalize(Vec3(0.f, 1.f, 1.f))};
+  CHECK(ray.o.y == 0.f);  // in the wall's plane
+  SurfaceHit hit;
+  CHECK_FALSE(scene.intersect(ray, hit));  // nothing else in the room
+  // The control: a ray into the wall from the room still hits it.
+  CHECK(scene.intersect(Ray{Vec3(2.f, 1.f, 1.f), Vec3(0.f, -1.f, 0.f)}, hit));
+  CHECK(hit.t == doctest::Approx(1.f));
+}
+
+TEST_CASE("rays_from_the_eye_ignore_surfaces_within_its_clearance") {
+  // A pinhole lying on a wall sees past it, as light tracing's connections to it do.
+  const Material white{Lambertian{Color(0.5f)}, Color(0.f)};
+  const Scene scene({0, 0, 0, 4, 0, 0, 4, 4, 0, 0, 4, 0}, {0, 1, 2, 0, 2, 3}, {0, 0}, {white});
+  CHECK(scene.eye_clearance() == doctest::Approx(4e-6f));
+  SurfaceHit hit;
+  const Ray just_behind{Vec3(2.f, 2.f, -2e-6f), Vec3(0.f, 0.f, 1.f)};
+  CHECK(scene.intersect(just_behind, hit));  // an ordinary ray hits the wall 2e-6 away
+  CHECK_FALSE(scene.intersect(scene.eye_ray(just_behind), hit));
+  // Connections to an eye 2e-6 behind the wall pass it; 1e-3 behind, they do not (the control).
+  CHECK(scene.visible_point(Vec3(2.f, 2.f, 1.f), Vec3(0, 0, 1), Vec3(2.f, 2.f, -2e-6f)));
+  CHECK_FALSE(scene.visible_point(Vec3(2.f, 2.f, 1.f), Vec3(0, 0, 1), Vec3(2.f, 2.f, -1e-3f)));
+}
