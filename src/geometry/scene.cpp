@@ -1,11 +1,11 @@
 #include "geometry/scene.h"
 
 #include <cmath>
-#include <tuple>
-#include <utility>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace dualight {
 
@@ -105,7 +105,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RayHit rh = accel_->intersect(ray);
   if (!rh.hit()) return false;
-  if (rh.t == 0.f && starts_in_plane_of(ray, rh.prim)) {
+  if (rh.t == 0.f && plane_offset(rh.prim, ray.o) == 0.f) {
     // A ray leaving the edge where two walls meet starts in the other wall's plane, offset
     // along its own normal only: Embree reports that wall at t = 0, a point the ray does not
     // reach through it (it leaves the plane). Past it, the ray's real first hit (issue 18: a
@@ -126,10 +126,6 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool Scene::starts_in_plane_of(const Ray& ray, uint32_t prim) const {
-  return dot(normal_[prim], ray.o - vertex(prim, 0)) == 0.f;
-}
-
 namespace {
 
 // Hits that are the target itself, or a triangle coplanar with it at the target point (a
@@ -148,25 +144,24 @@ struct VisibilityQuery {
   Vec3 origin, direction, target_point, target_normal;
   float tolerance;
 
-  // Which side of the plane (n, v) triangle `t` lies on: its vertex farthest from the plane.
-  float side_of(uint32_t t, const Vec3& n, const Vec3& v) const {
+  // Which side of the plane of `prim` triangle `t` lies on: its vertex farthest from the plane.
+  float side_of(uint32_t t, uint32_t prim) const {
     float far = 0.f;
     for (int k = 0; k < 3; ++k) {
-      const float s = dot(n, scene->vertex(t, k) - v);
+      const float s = scene->plane_offset(prim, scene->vertex(t, k));
       if (std::abs(s) > std::abs(far)) far = s;
     }
     return far;
   }
 
   bool segment_stays_on_one_side(uint32_t prim) const {
-    const Vec3 n = scene->normal(prim), v = scene->vertex(prim, 0);
-    const float s0 = dot(n, origin - v), s1 = dot(n, target_point - v);
+    const float s0 = scene->plane_offset(prim, origin), s1 = scene->plane_offset(prim, target_point);
     const auto same_side = [](float a, float b) { return a != 0.f && b != 0.f && (a > 0.f) == (b > 0.f); };
     if (s0 == 0.f && s1 == 0.f) return false;  // the segment in the plane: it may lie on prim
     if (s0 == 0.f) {
-      return origin_triangle != Scene::kNoTriangle && same_side(side_of(origin_triangle, n, v), s1);
+      return origin_triangle != Scene::kNoTriangle && same_side(side_of(origin_triangle, prim), s1);
     }
-    if (s1 == 0.f) return same_side(side_of(target, n, v), s0);
+    if (s1 == 0.f) return same_side(side_of(target, prim), s0);
     return same_side(s0, s1);
   }
 

@@ -67,9 +67,8 @@ class Scene {
     return {&emitters_[i], emitter_sampler_.pmf(i)};
   }
   float emitter_pmf(const Emitter& e) const { return emitter_sampler_.pmf(static_cast<size_t>(&e - emitters_.data())); }
-  // The scale offset_ray_origin (core/ray.h) uses here: the largest side of the bounding box,
-  // capped at 1 (a power of two, so offsets stay exact multiples).
-  float offset_scale() const { return offset_scale_; }
+  // p moved off its surface along n by offset_ray_origin (core/ray.h) at this scene's scale: the
+  // largest side of the bounding box, capped at 1 (a power of two, so offsets stay exact).
   Vec3 spawn_origin(const Vec3& p, const Vec3& n) const { return offset_ray_origin(p, n, offset_scale_); }
   // Surfaces closer to the pinhole than this (1e-6 of the scene's extent) are not seen from it,
   // by every estimator alike: rays leaving the eye start there (Ray::tmin), and connections to
@@ -80,6 +79,8 @@ class Scene {
     ray.tmin = eye_clearance_;
     return ray;
   }
+  // Signed distance of p from the plane of triangle `prim` (along its unit normal).
+  float plane_offset(uint32_t prim, const Vec3& p) const { return dot(normal_[prim], p - vertex(prim, 0)); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
@@ -99,7 +100,6 @@ class Scene {
 
  private:
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
-  bool starts_in_plane_of(const Ray& ray, uint32_t prim) const;  // the origin exactly in prim's plane
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;

@@ -35,15 +35,12 @@ def _mtl_floats(value: Any, key: str, where: str) -> RGB:
     return (numbers[0], numbers[1], numbers[2])
 
 
-def _read_mtl_files(obj: Path) -> dict[str, dict[str, Any]]:
-    """The materials of every ``mtllib`` an OBJ names, parsed by trimesh (keys lower case)."""
+def _read_mtl_files(obj: Path, text: str) -> dict[str, dict[str, Any]]:
+    """The materials of every ``mtllib`` the OBJ's ``text`` names, parsed by trimesh (keys lower
+    case)."""
     from trimesh.exchange.obj import parse_mtl
 
     materials: dict[str, dict[str, Any]] = {}
-    try:
-        text = obj.read_text(errors="replace")
-    except OSError as exc:
-        raise ValueError(f"cannot read OBJ file {str(obj)!r}: {exc}") from exc
     for line in text.splitlines():
         parts = line.strip().split(maxsplit=1)
         if len(parts) == 2 and parts[0] == "mtllib":
@@ -197,8 +194,8 @@ def load_obj(
         scene = Scene()
     elif not isinstance(scene, Scene):
         raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
-    mtl = _read_mtl_files(obj)
     text, used = _obj_text(obj)
+    mtl = _read_mtl_files(obj, text)
     undefined = list(dict.fromkeys(m for m in used if m not in mtl))
     if undefined:
         warnings.warn(
