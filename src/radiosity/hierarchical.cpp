@@ -56,10 +56,10 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     for (int c = 0; c < 3; ++c) {
       e.rho[c] = rho[c];
       e.E[c] = kPi * Le[c];  // emitted radiosity
-      emitted_radiosity_max_ =
-          std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] + e.E[1] * kLuminanceWeights[1] +
-                                               e.E[2] * kLuminanceWeights[2]);
     }
+    emitted_radiosity_max_ =
+        std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] + e.E[1] * kLuminanceWeights[1] +
+                                             e.E[2] * kLuminanceWeights[2]);
     largest = std::max(largest, e.area);
     elements_.push_back(e);
   }

@@ -94,7 +94,7 @@ class HierarchicalSolver {
     uint32_t root;
     int32_t first_child = -1;  // four children, contiguous
     int32_t parent = -1;
-    double rho[3], E[3];
+    double rho[3] = {0, 0, 0}, E[3] = {0, 0, 0};
     double B[3] = {0, 0, 0}, Bg[3] = {0, 0, 0};  // radiosity, gathered at this level
     double W[3] = {0, 0, 0}, Wg[3] = {0, 0, 0};  // importance density, gathered at this level
     double R = 0.0;                               // receiver density (leaves)
