@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "box_scene.h"
 #include "check.h"
 #include "core/render_control.h"
 #include "core/rng.h"
@@ -117,21 +118,6 @@ TEST_CASE("dense_lu_solves_both_sides_like_eigens_lu_and_stops_when_cancelled") 
 
 namespace {
 
-// The unit cube seen from inside (normals inward), with an emitting triangle under its ceiling.
-Scene box_with_a_light() {
-  std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
-  std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
-                             3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
-  const uint32_t base = static_cast<uint32_t>(p.size() / 3);
-  for (const float v : {0.4f, 0.95f, 0.4f, 0.6f, 0.95f, 0.4f, 0.5f, 0.95f, 0.6f}) p.push_back(v);
-  for (const uint32_t i : {base, base + 1, base + 2}) t.push_back(i);
-  std::vector<uint32_t> m(t.size() / 3, 0);
-  m.back() = 1;
-  return Scene(std::move(p), std::move(t), std::move(m),
-               {Material{Lambertian{Color(0.7f, 0.5f, 0.3f)}, Color(0.f)},
-                Material{Lambertian{Color(0.2f)}, Color(5.f)}});
-}
-
 // Leaves `value` in the stack memory the next call at this depth will use.
 [[gnu::noinline]] double fill_stack(double value) {
   volatile double junk[8192];
@@ -156,7 +142,7 @@ Scene box_with_a_light() {
 TEST_CASE("hierarchical_bf_threshold_reads_only_the_emission_it_set") {
   // The constructor took the brightest emission from channels it had not set yet: with large
   // values left on the stack, BF's threshold was garbage and it refined nothing.
-  const Scene scene = box_with_a_light();
+  const Scene scene = closed_box();
   const uint64_t clean = refined_after_stack_held(scene, 0.0);
   CHECK(clean > 0);
   CHECK(refined_after_stack_held(scene, 1e300) == clean);
