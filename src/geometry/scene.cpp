@@ -192,8 +192,9 @@ bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const 
   const Vec3 d = p1 - p0;
   const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
   // To the eye, short of it by eye_clearance (surfaces through the pinhole do not block it).
-  const float stop = 1.f - eye_clearance_ / length(p1 - o0);
-  return !(stop > 0.f) || !accel_->occluded(Ray{o0, p1 - o0, stop});
+  const Vec3 to_eye = p1 - o0;
+  const float stop = 1.f - eye_clearance_ / length(to_eye);
+  return !(stop > 0.f) || !accel_->occluded(Ray{o0, to_eye, stop});
 }
 
 }  // namespace dualight
