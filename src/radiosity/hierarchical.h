@@ -9,7 +9,12 @@
 // F_ji = A_i F_ij / A_j, which makes the importance system the exact adjoint (area inner
 // product) of the radiosity system on any hierarchy: <R, B>_A = <W, E>_A to rounding.
 // Push-pull moves gathered quantities down to leaves and averages them up [HSA91 sec. 4].
+// A link whose source has children carries their radiosity weighted by what the receiver sees
+// of each (source_view), not the source's average; importance flows back to those children.
+// Above the per-link oracle, an a-posteriori check per element pushes links down where what the
+// element gathers varies across it by more than the oracle's threshold (flag_links).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -29,7 +34,7 @@ struct HierarchicalOptions {
   double tolerance = 1e-6;  // relative change per sweep that ends a step's sweeps
   uint64_t seed = 0;
   int threads = 0;
-  uint64_t max_links = 20000000;  // refinement stops before exceeding this (about 0.5 GiB)
+  uint64_t max_links = 20000000;  // refinement stops before exceeding this (48 bytes each: about 1 GiB)
   bool skip_unneeded = true;      // no visibility rays in a convex enclosure (scene_features.h)
 };
 
@@ -108,14 +113,34 @@ class HierarchicalSolver {
     float F;         // receiver -> source form factor with the transport visibility estimate
     float F_oracle;  // the same with an independent visibility estimate, for the oracle only
     float F_unoccluded;
+    float F_point[7];  // point-to-source form factors at the receiver's 7 rule points, each times
+                       // the oracle's visible fraction from that point
+  };
+
+  // A link the oracle flags, and which of its ends to split.
+  struct Refinement {
+    uint32_t link;
+    bool split_receiver;
   };
 
   Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays, uint64_t& rays_skipped) const;
   bool facing(const Element& a, const Element& b) const;
   void subdivide(uint32_t e);
   // The three parts of a step: the oracle's flags, the refinement, the solve of both systems.
-  std::vector<uint32_t> flag_links() const;
-  void refine_links(std::vector<uint32_t> to_refine, HierarchicalStep& st, const RenderControl* control);
+  std::vector<Refinement> flag_links(const RenderControl* control) const;
+  std::vector<char> links_to_push_down(double measurement, const RenderControl* control) const;
+  void gathered_deviations(uint32_t receiver, const uint32_t* links, size_t count,
+                           std::vector<std::array<double, 7>>& deviation) const;
+  static std::vector<size_t> strays_to_push_down(const std::vector<std::array<double, 7>>& deviation,
+                                                 double threshold);
+  void refine_links(std::vector<Refinement> to_refine, HierarchicalStep& st, const RenderControl* control);
+  // How a link's receiver sees its source's four children, when the source has them: each
+  // child's share of the link's form factor (share[0] < 0: the source has none, or is unseen).
+  struct SourceView {
+    float share[4];
+  };
+  SourceView source_view(const Link& link, uint64_t& rays) const;
+  std::vector<SourceView> source_views(const RenderControl* control);
   void link_roots(RenderControl* control);
   double solve_links(RenderControl* control);
   void push_pull_radiosity(uint32_t e, const double down[3]);

@@ -19,6 +19,24 @@ receiver's irradiance vary strongly, so both directions are tested, as in HSA91)
   weighted by the receiver's importance W, plus the importance error it leaves at the source
   weighted by the source's radiosity) exceeds ``epsilon`` times the measurement.
 
+Per-link bounds do not bound an element's total: at a leaf in a corner the errors of many links
+add up with one sign (with the link test alone, single leaves of the furnace were off by up to
+66 % at ``"bf"``, epsilon 0.1). So each step also evaluates what every element gathers at its 7
+quadrature points, and where that strays from the element's average by more than the oracle's
+threshold (for ``"bf"``, ``epsilon`` times the brightest emitted radiosity, in luminance; for
+``"importance"``, ``epsilon`` times the measurement once weighted by the element's importance
+and area), the links that stray most are pushed down to the element's children until the rest
+stray by at most half of it; each point counts only what the oracle's rays from it see of the
+source. In the furnace the worst leaf is then within about 2 ``epsilon`` of the exact radiosity
+with ``"bf"``.
+
+A link whose source has children carries their radiosity, each weighted by its share of the
+link's form factor as the receiver sees it (exact point form factors from the receiver's 7
+points; for a partly hidden link, only from the points whose ray to the child arrives), and
+importance flows back to those children, so the two systems stay adjoint. A source's average
+over-weights what the receiver sees little of: a bias of one sign in every gather that adds up
+over an enclosure (without this the cube lost 4 % of its energy at ``"bf"``, epsilon 1e-3).
+
 A partly visible link is judged by its unoccluded form factor, so shadow boundaries refine. Each
 link keeps two independent visibility estimates: one carries light, the other decides
 refinement (with one, refinement would keep unlucky underestimates: a dark bias).
