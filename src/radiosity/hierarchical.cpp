@@ -435,9 +435,11 @@ void HierarchicalSolver::refine_links(std::vector<Refinement> to_refine, Hierarc
 // exact point form factors from the receiver's 7 points, and for a partly hidden link only from
 // the points whose ray to the child's centroid arrives.
 HierarchicalSolver::SourceView HierarchicalSolver::source_view(const Link& link, uint64_t& rays) const {
-  SourceView view{{-1.f, 0.f, 0.f, 0.f}};
+  SourceView view;
   const Element& s = elements_[link.source];
-  if (s.first_child < 0 || !(link.F_unoccluded > 0.f)) return view;
+  if (s.first_child < 0) return view;
+  view.share[0] = kNone;
+  if (!(link.F_unoccluded > 0.f)) return view;
   const Element& r = elements_[link.receiver];
   const bool partial = link.F_oracle < 0.999f * link.F_unoccluded;
   const std::vector<QuadraturePoint>& rule = triangle_rule(7);
@@ -459,21 +461,21 @@ HierarchicalSolver::SourceView HierarchicalSolver::source_view(const Link& link,
   return view;
 }
 
-// source_view of every link (fewer once `control` is cancelled: the rest carry averages).
-std::vector<HierarchicalSolver::SourceView> HierarchicalSolver::source_views(const RenderControl* control) {
-  std::vector<SourceView> views(links_.size(), SourceView{{-1.f, 0.f, 0.f, 0.f}});
+// source_view of every link whose source has gained children since it was last seen (fewer once
+// `control` is cancelled: the rest carry averages until the next step).
+void HierarchicalSolver::update_source_views(const RenderControl* control) {
   std::atomic<uint64_t> rays{0};
   constexpr size_t kChunk = 1024;
   parallel_for_each_index(options_.threads, (links_.size() + kChunk - 1) / kChunk, [&](size_t chunk) {
     if (control != nullptr && control->cancelled()) return;
     uint64_t local = 0;
     for (size_t l = chunk * kChunk; l < std::min(links_.size(), (chunk + 1) * kChunk); ++l) {
-      views[l] = source_view(links_[l], local);
+      Link& link = links_[l];
+      if (link.view.share[0] == kNotSeen) link.view = source_view(link, local);
     }
     rays.fetch_add(local);
   });
   rays_ += rays.load();
-  return views;
 }
 
 // Gathers both systems on the current links and pushes and pulls them through the trees,
@@ -488,12 +490,13 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
   std::vector<uint32_t> r_offsets, r_order, s_offsets, s_order;
   group_links(elements_.size(), n_links, by_receiver, r_offsets, r_order);
   group_links(elements_.size(), n_links, by_source, s_offsets, s_order);
-  const std::vector<SourceView> views = source_views(control);
+  update_source_views(control);
+  const auto view = [&](size_t l) -> const SourceView& { return links_[l].view; };
   // Importance flows back to the children a link sees: entry 4 l + q for child q of link l's
   // source, grouped by that child.
   std::vector<uint32_t> seen_child(4 * n_links, 0);
   for (size_t l = 0; l < n_links; ++l) {
-    if (views[l].share[0] < 0.f) continue;
+    if (view(l).share[0] < 0.f) continue;
     for (uint32_t q = 0; q < 4; ++q) seen_child[4 * l + q] = static_cast<uint32_t>(elements_[links_[l].source].first_child) + q;
   }
   std::vector<uint32_t> c_offsets, c_order;
@@ -514,19 +517,19 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
         double bg[3] = {0, 0, 0}, wg[3] = {0, 0, 0};
         for (uint32_t k = r_offsets[e]; k < r_offsets[e + 1]; ++k) {  // radiosity arrives at e
           const Link& link = links_[r_order[k]];
-          const SourceView& view = views[r_order[k]];
+          const SourceView& seen_by = link.view;
           const Element& s = elements_[link.source];
           for (int c = 0; c < 3; ++c) {
             double seen = s.B[c];
-            if (view.share[0] >= 0.f) {
+            if (seen_by.share[0] >= 0.f) {
               seen = 0.0;
-              for (int q = 0; q < 4; ++q) seen += view.share[q] * elements_[static_cast<size_t>(s.first_child + q)].B[c];
+              for (int q = 0; q < 4; ++q) seen += seen_by.share[q] * elements_[static_cast<size_t>(s.first_child + q)].B[c];
             }
             bg[c] += el.rho[c] * link.F * seen;
           }
         }
         for (uint32_t k = s_offsets[e]; k < s_offsets[e + 1]; ++k) {  // importance arrives at e
-          if (views[s_order[k]].share[0] >= 0.f) continue;               // (at its children)
+          if (view(s_order[k]).share[0] >= 0.f) continue;               // (at its children)
           const Link& link = links_[s_order[k]];
           const Element& r = elements_[link.receiver];
           const double F_reverse = r.area * link.F / el.area;
@@ -534,10 +537,10 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
         }
         for (uint32_t k = c_offsets[e]; k < c_offsets[e + 1]; ++k) {  // ... as a seen child
           const uint32_t entry = c_order[k];
-          if (views[entry / 4].share[0] < 0.f) continue;
+          if (view(entry / 4).share[0] < 0.f) continue;
           const Link& link = links_[entry / 4];
           const Element& r = elements_[link.receiver];
-          const double F_reverse = r.area * link.F * views[entry / 4].share[entry % 4] / el.area;
+          const double F_reverse = r.area * link.F * view(entry / 4).share[entry % 4] / el.area;
           for (int c = 0; c < 3; ++c) wg[c] += r.rho[c] * F_reverse * r.W[c];
         }
         std::copy(bg, bg + 3, el.Bg);

@@ -34,7 +34,7 @@ struct HierarchicalOptions {
   double tolerance = 1e-6;  // relative change per sweep that ends a step's sweeps
   uint64_t seed = 0;
   int threads = 0;
-  uint64_t max_links = 20000000;  // refinement stops before exceeding this (48 bytes each: about 1 GiB)
+  uint64_t max_links = 20000000;  // refinement stops before exceeding this (64 bytes each: about 1.3 GiB)
   bool skip_unneeded = true;      // no visibility rays in a convex enclosure (scene_features.h)
 };
 
@@ -104,6 +104,12 @@ class HierarchicalSolver {
     double W[3] = {0, 0, 0}, Wg[3] = {0, 0, 0};  // importance density, gathered at this level
     double R = 0.0;                               // receiver density (leaves)
   };
+  // How a link's receiver sees its source's four children: each child's share of the link's form
+  // factor. share[0] = kNotSeen until the source has children, kNone if it sees none of them.
+  static constexpr float kNotSeen = -2.f, kNone = -1.f;
+  struct SourceView {
+    float share[4] = {kNotSeen, 0.f, 0.f, 0.f};
+  };
   // Two independent visibility estimates: one for the transport, one for the refinement
   // decisions. With a single one, links whose rays happened to be blocked would never be
   // refined and keep their underestimate while lucky ones get re-sampled: a bias towards too
@@ -115,6 +121,7 @@ class HierarchicalSolver {
     float F_unoccluded;
     float F_point[7];  // point-to-source form factors at the receiver's 7 rule points, each times
                        // the oracle's visible fraction from that point
+    SourceView view;   // how the receiver sees the source's children (computed once they exist)
   };
 
   // A link the oracle flags, and which of its ends to split.
@@ -134,13 +141,8 @@ class HierarchicalSolver {
   static std::vector<size_t> strays_to_push_down(const std::vector<std::array<double, 7>>& deviation,
                                                  double threshold);
   void refine_links(std::vector<Refinement> to_refine, HierarchicalStep& st, const RenderControl* control);
-  // How a link's receiver sees its source's four children, when the source has them: each
-  // child's share of the link's form factor (share[0] < 0: the source has none, or is unseen).
-  struct SourceView {
-    float share[4];
-  };
   SourceView source_view(const Link& link, uint64_t& rays) const;
-  std::vector<SourceView> source_views(const RenderControl* control);
+  void update_source_views(const RenderControl* control);
   void link_roots(RenderControl* control);
   double solve_links(RenderControl* control);
   void push_pull_radiosity(uint32_t e, const double down[3]);
