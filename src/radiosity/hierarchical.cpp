@@ -317,8 +317,8 @@ std::vector<char> HierarchicalSolver::links_to_push_down(double measurement, con
 }
 
 // For each of the receiver's links, what it gathers at the receiver's 7 quadrature points minus
-// its average over the receiver (the link's form factor): the point form factor (kept from the
-// link's construction) times rho_i B_j, the channels weighted as the oracle weighs them
+// its average over the receiver: the point form factor times the oracle's visible fraction from
+// that point (both kept from the link's construction) times rho_i B_j, the channels weighted as the oracle weighs them
 // (luminance for BF; importance density times area for importance).
 void HierarchicalSolver::gathered_deviations(uint32_t receiver, const uint32_t* links, size_t count,
                                              std::vector<std::array<double, 7>>& deviation) const {
@@ -443,12 +443,14 @@ HierarchicalSolver::SourceView HierarchicalSolver::source_view(const Link& link,
   const Element& r = elements_[link.receiver];
   const bool partial = link.F_oracle < 0.999f * link.F_unoccluded;
   const std::vector<QuadraturePoint>& rule = triangle_rule(7);
+  Vec3 points[7];
+  for (int k = 0; k < 7; ++k) points[k] = point_in(r.v, static_cast<float>(rule[k].b1), static_cast<float>(rule[k].b2));
   double seen[4] = {0, 0, 0, 0}, total = 0.0;
   for (int q = 0; q < 4; ++q) {
     const Element& child = elements_[static_cast<size_t>(s.first_child + q)];
     const Vec3 centroid = (child.v[0] + child.v[1] + child.v[2]) / 3.f;
     for (int k = 0; k < 7; ++k) {
-      const Vec3 x = point_in(r.v, static_cast<float>(rule[k].b1), static_cast<float>(rule[k].b2));
+      const Vec3& x = points[k];
       const double kernel = rule[k].weight * point_triangle_form_factor(x, r.normal, child.v);
       if (!(kernel > 0.0)) continue;
       if (partial) ++rays;
@@ -478,6 +480,18 @@ void HierarchicalSolver::update_source_views(const RenderControl* control) {
   rays_ += rays.load();
 }
 
+// The radiosity `link` carries: its source's children's, weighted by the link's view of them, or
+// the source's own where it has none.
+void HierarchicalSolver::seen_radiosity(const Link& link, double seen[3]) const {
+  const Element& s = elements_[link.source];
+  for (int c = 0; c < 3; ++c) {
+    seen[c] = s.B[c];
+    if (link.view.share[0] < 0.f) continue;
+    seen[c] = 0.0;
+    for (int q = 0; q < 4; ++q) seen[c] += link.view.share[q] * elements_[static_cast<size_t>(s.first_child + q)].B[c];
+  }
+}
+
 // Gathers both systems on the current links and pushes and pulls them through the trees,
 // sweep after sweep until the change is within tolerance; returns the last change.
 double HierarchicalSolver::solve_links(RenderControl* control) {
@@ -491,16 +505,18 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
   group_links(elements_.size(), n_links, by_receiver, r_offsets, r_order);
   group_links(elements_.size(), n_links, by_source, s_offsets, s_order);
   update_source_views(control);
-  const auto view = [&](size_t l) -> const SourceView& { return links_[l].view; };
-  // Importance flows back to the children a link sees: entry 4 l + q for child q of link l's
-  // source, grouped by that child.
-  std::vector<uint32_t> seen_child(4 * n_links, 0);
+  // Importance flows back to the children a link sees: entry 4 l + q (child q of link l's
+  // source) for the links that see children, grouped by that child.
+  std::vector<uint32_t> entries, seen_child;
   for (size_t l = 0; l < n_links; ++l) {
-    if (view(l).share[0] < 0.f) continue;
-    for (uint32_t q = 0; q < 4; ++q) seen_child[4 * l + q] = static_cast<uint32_t>(elements_[links_[l].source].first_child) + q;
+    if (links_[l].view.share[0] < 0.f) continue;
+    for (uint32_t q = 0; q < 4; ++q) {
+      entries.push_back(static_cast<uint32_t>(4 * l + q));
+      seen_child.push_back(static_cast<uint32_t>(elements_[links_[l].source].first_child) + q);
+    }
   }
   std::vector<uint32_t> c_offsets, c_order;
-  group_links(elements_.size(), seen_child.size(), seen_child, c_offsets, c_order);
+  group_links(elements_.size(), entries.size(), seen_child, c_offsets, c_order);
   const double zero[3] = {0, 0, 0};
   double change = 0.0;
   for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
@@ -517,30 +533,22 @@ double HierarchicalSolver::solve_links(RenderControl* control) {
         double bg[3] = {0, 0, 0}, wg[3] = {0, 0, 0};
         for (uint32_t k = r_offsets[e]; k < r_offsets[e + 1]; ++k) {  // radiosity arrives at e
           const Link& link = links_[r_order[k]];
-          const SourceView& seen_by = link.view;
-          const Element& s = elements_[link.source];
-          for (int c = 0; c < 3; ++c) {
-            double seen = s.B[c];
-            if (seen_by.share[0] >= 0.f) {
-              seen = 0.0;
-              for (int q = 0; q < 4; ++q) seen += seen_by.share[q] * elements_[static_cast<size_t>(s.first_child + q)].B[c];
-            }
-            bg[c] += el.rho[c] * link.F * seen;
-          }
+          double seen[3];
+          seen_radiosity(link, seen);
+          for (int c = 0; c < 3; ++c) bg[c] += el.rho[c] * link.F * seen[c];
         }
         for (uint32_t k = s_offsets[e]; k < s_offsets[e + 1]; ++k) {  // importance arrives at e
-          if (view(s_order[k]).share[0] >= 0.f) continue;               // (at its children)
           const Link& link = links_[s_order[k]];
+          if (link.view.share[0] >= 0.f) continue;  // (at its children, below)
           const Element& r = elements_[link.receiver];
           const double F_reverse = r.area * link.F / el.area;
           for (int c = 0; c < 3; ++c) wg[c] += r.rho[c] * F_reverse * r.W[c];
         }
         for (uint32_t k = c_offsets[e]; k < c_offsets[e + 1]; ++k) {  // ... as a seen child
-          const uint32_t entry = c_order[k];
-          if (view(entry / 4).share[0] < 0.f) continue;
+          const uint32_t entry = entries[c_order[k]];
           const Link& link = links_[entry / 4];
           const Element& r = elements_[link.receiver];
-          const double F_reverse = r.area * link.F * view(entry / 4).share[entry % 4] / el.area;
+          const double F_reverse = r.area * link.F * link.view.share[entry % 4] / el.area;
           for (int c = 0; c < 3; ++c) wg[c] += r.rho[c] * F_reverse * r.W[c];
         }
         std::copy(bg, bg + 3, el.Bg);

@@ -143,6 +143,7 @@ class HierarchicalSolver {
   void refine_links(std::vector<Refinement> to_refine, HierarchicalStep& st, const RenderControl* control);
   SourceView source_view(const Link& link, uint64_t& rays) const;
   void update_source_views(const RenderControl* control);
+  void seen_radiosity(const Link& link, double seen[3]) const;
   void link_roots(RenderControl* control);
   double solve_links(RenderControl* control);
   void push_pull_radiosity(uint32_t e, const double down[3]);
