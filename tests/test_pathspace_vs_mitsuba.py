@@ -78,6 +78,26 @@ CASES = {
         {"path": 1536, "light": 2048, "bdpt": 512},
         {"path": BLOCKS, "light": BLOCKS, "bdpt": BLOCKS},
     ),
+    # Issue 19's materials. Rough gold, frosted glass and a rough-plastic floor: the caustic
+    # box's heavy tails (light focused by the frosted sphere, seen through it or in the gold)
+    # call for 16x16 blocks in the path tracer and BDPT; the control makes every surface 20 %
+    # rougher.
+    "glossy": Case(
+        "glossy_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="glossy", **kw),
+        {"roughness_scale": 1.2},
+        {"path": 512, "light": 256, "bdpt": 128},
+        {"path": LARGE_BLOCKS, "light": BLOCKS, "bdpt": LARGE_BLOCKS},
+    ),
+    # Smooth copper, a thin-glass bubble and a smooth-plastic floor; the control changes the
+    # floor's coat and the bubble to IOR 1.7.
+    "coated": Case(
+        "coated_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="coated", **kw),
+        {"ior": 1.7},
+        {"path": 512, "light": 512, "bdpt": 128},
+        {"path": LARGE_BLOCKS, "light": BLOCKS, "bdpt": LARGE_BLOCKS},
+    ),
 }
 RUNS = [(name, method) for name, case in sorted(CASES.items()) for method in case.spp]
 

@@ -18,7 +18,19 @@ from importlib.metadata import PackageNotFoundError, version
 from dualight import io, materials, metrics, radiosity, scenes
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
-from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.materials import (
+    Conductor,
+    Dielectric,
+    Diffuse,
+    Material,
+    Mirror,
+    Plastic,
+    RoughConductor,
+    RoughDielectric,
+    RoughPlastic,
+    ThinDielectric,
+    TwoSided,
+)
 from dualight.methods import METHODS
 from dualight.render import render
 from dualight.scene import Camera, Mesh, Scene
@@ -31,13 +43,20 @@ except PackageNotFoundError:  # running from a source tree
 __all__ = [
     "METHODS",
     "Camera",
+    "Conductor",
     "Dielectric",
     "Diffuse",
     "Image",
     "Material",
     "Mesh",
     "Mirror",
+    "Plastic",
+    "RoughConductor",
+    "RoughDielectric",
+    "RoughPlastic",
     "Scene",
+    "ThinDielectric",
+    "TwoSided",
     "__version__",
     "io",
     "load_mitsuba_xml",

@@ -64,11 +64,29 @@ class BsdfKind:
       mirror
     
       dielectric
+    
+      conductor
+    
+      rough_conductor
+    
+      thin_dielectric
+    
+      rough_dielectric
+    
+      plastic
+    
+      rough_plastic
     """
     __members__: typing.ClassVar[dict[str, BsdfKind]]
+    conductor: typing.ClassVar[BsdfKind]
     dielectric: typing.ClassVar[BsdfKind]
     lambertian: typing.ClassVar[BsdfKind]
     mirror: typing.ClassVar[BsdfKind]
+    plastic: typing.ClassVar[BsdfKind]
+    rough_conductor: typing.ClassVar[BsdfKind]
+    rough_dielectric: typing.ClassVar[BsdfKind]
+    rough_plastic: typing.ClassVar[BsdfKind]
+    thin_dielectric: typing.ClassVar[BsdfKind]
     @typing.overload
     def __eq__(self, other: BsdfKind) -> bool:
         ...
@@ -154,6 +172,36 @@ class Bsdf:
     """
     One BSDF in its local frame (z = geometric normal, the exterior side for a dielectric); vectorised for tests. Directions point away from the surface.
     """
+    @staticmethod
+    def conductor(*, eta: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [0.0, 0.0, 0.0], k: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], specular_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], two_sided: bool = False) -> Bsdf:
+        """
+        Mitsuba's `conductor`: a smooth metal with complex IOR eta + i k (eta 0, k 1: a perfect mirror).
+        """
+    @staticmethod
+    def plastic(*, diffuse_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [0.5, 0.5, 0.5], specular_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], ior: typing.SupportsFloat | typing.SupportsIndex = 1.4900000095367432, nonlinear: bool = False, two_sided: bool = False) -> Bsdf:
+        """
+        Mitsuba's `plastic` (diffuse base under a smooth coat).
+        """
+    @staticmethod
+    def rough_conductor(*, distribution: str = 'beckmann', alpha_u: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, alpha_v: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, eta: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [0.0, 0.0, 0.0], k: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], specular_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], two_sided: bool = False) -> Bsdf:
+        """
+        Mitsuba's `roughconductor` (microfacet metal).
+        """
+    @staticmethod
+    def rough_dielectric(*, distribution: str = 'beckmann', alpha_u: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, alpha_v: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5046000480651855) -> Bsdf:
+        """
+        Mitsuba's `roughdielectric` (frosted glass; ior = interior / exterior).
+        """
+    @staticmethod
+    def rough_plastic(*, distribution: str = 'beckmann', alpha: typing.SupportsFloat | typing.SupportsIndex = 0.10000000149011612, diffuse_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [0.5, 0.5, 0.5], specular_reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], ior: typing.SupportsFloat | typing.SupportsIndex = 1.4900000095367432, nonlinear: bool = False, two_sided: bool = False) -> Bsdf:
+        """
+        Mitsuba's `roughplastic` (diffuse base under a rough coat; isotropic).
+        """
+    @staticmethod
+    def thin_dielectric(*, ior: typing.SupportsFloat | typing.SupportsIndex = 1.5046000480651855) -> Bsdf:
+        """
+        Mitsuba's `thindielectric` (a pane: reflection or straight through).
+        """
     def __init__(self, kind: BsdfKind, *, reflectance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"] = [1.0, 1.0, 1.0], ior: typing.SupportsFloat | typing.SupportsIndex = 1.5) -> None:
         ...
     def eval_f(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], mode: TransportMode = TransportMode.radiance) -> numpy.typing.NDArray[numpy.float32]:

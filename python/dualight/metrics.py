@@ -546,9 +546,10 @@ def compare(
 
 def renderable_by_light_tracing(scene: Scene, subsamples: int = 4) -> np.ndarray:
     """``H x W`` bool: the pixels whose every camera ray (a ``subsamples x subsamples`` grid of
-    cell centres) first hits a diffuse reflector, or nothing. Only these can a light tracer
-    render completely: it cannot reach the pinhole through a mirror or glass seen directly, so
-    compare it with another estimator on this mask (``welch_test(..., mask=...)``)."""
+    cell centres) first hits a surface without a Dirac lobe (diffuse or glossy), or nothing.
+    Only these can a light tracer render completely: it cannot reach the pinhole through a
+    mirror, smooth glass or a smooth coat seen directly, so compare it with another estimator
+    on this mask (``welch_test(..., mask=...)``)."""
     cam = scene.camera
     if cam is None:
         raise ValueError("scene has no camera")
@@ -565,7 +566,7 @@ def renderable_by_light_tracing(scene: Scene, subsamples: int = 4) -> np.ndarray
                     pixel.append(y * cam.width + x)
     _, prim = scene._compile().intersect(np.array(origins), np.array(directions))
     _, _, mesh_of = scene.triangle_arrays()
-    not_diffuse = np.array([not m.material.is_diffuse_reflector for m in scene.meshes])
+    not_diffuse = np.array(["specular" in m.material.flags for m in scene.meshes])
     hits_not_diffuse = np.zeros(len(prim), dtype=bool)
     hit = prim >= 0
     hits_not_diffuse[hit] = not_diffuse[mesh_of[prim[hit]]]

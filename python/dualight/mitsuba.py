@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.materials import Material
 
 if TYPE_CHECKING:
     from dualight.scene import Scene
@@ -175,19 +175,9 @@ def _rgb(value: Sequence[float]) -> dict[str, Any]:
 
 def _bsdf(material: Material, name: str) -> dict[str, Any]:
     """The Mitsuba BSDF dict matching a dualight material (see :func:`scene_dict`)."""
-    if isinstance(material, Diffuse):
-        diffuse = {"type": "diffuse", "reflectance": _rgb(material.reflectance)}
-        return {"type": "twosided", "bsdf": diffuse}
-    if isinstance(material, Mirror):
-        conductor = {
-            "type": "conductor",
-            "material": "none",
-            "specular_reflectance": _rgb(material.reflectance),
-        }
-        return {"type": "twosided", "bsdf": conductor}
-    if isinstance(material, Dielectric):
-        return {"type": "dielectric", "int_ior": float(material.ior), "ext_ior": 1.0}
-    raise TypeError(f"mesh {name!r}: unknown material {type(material).__name__}")
+    if not isinstance(material, Material):
+        raise TypeError(f"mesh {name!r}: unknown material {type(material).__name__}")
+    return material._mitsuba_bsdf()
 
 
 def _mesh(mesh: Any, key: str) -> Any:

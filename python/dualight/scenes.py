@@ -18,7 +18,17 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from dualight.materials import Dielectric, Mirror
+from dualight.materials import (
+    Conductor,
+    Dielectric,
+    Material,
+    Mirror,
+    Plastic,
+    RoughConductor,
+    RoughDielectric,
+    RoughPlastic,
+    ThinDielectric,
+)
 from dualight.scene import Camera, Scene
 
 # Cornell box data, www.graphics.cornell.edu/online/box/data.html (quads, millimetres).
@@ -103,7 +113,7 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
 CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
 CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
 _CORNELL_SPHERE_SUBDIVISIONS = 5
-CORNELL_VARIANTS = ("classic", "caustics")
+CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated")
 
 
 def cornell_box(
@@ -113,6 +123,7 @@ def cornell_box(
     reflectance_scale: float = 1.0,
     variant: str = "classic",
     ior: float = 1.5,
+    roughness_scale: float = 1.0,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
@@ -136,16 +147,31 @@ def cornell_box(
         ``ior``, radius 95 mm, centre (180, 95, 165): front right). The glass sphere
         focuses the light into a caustic on the floor beside it, towards the camera; the
         mirror shows the room and the light.
+        ``"glossy"``: the caustic scene's spheres made rough and its floor coated, the
+        materials of Mitsuba's ``roughconductor``, ``roughdielectric`` and ``roughplastic``:
+        ``gold_sphere`` (a :class:`~dualight.RoughConductor` of Mitsuba's gold, GGX alpha
+        0.2, in place of the mirror), ``frosted_sphere`` (a
+        :class:`~dualight.RoughDielectric` of index ``ior``, Beckmann alpha 0.15, in place of
+        the glass) and a :class:`~dualight.RoughPlastic` floor (the white base, GGX alpha
+        0.3, IOR 1.5). ``"coated"``: the same with smooth materials, Mitsuba's ``conductor``,
+        ``thindielectric`` and ``plastic``: ``copper_sphere`` (a
+        :class:`~dualight.Conductor` of Mitsuba's copper), ``bubble`` (a
+        :class:`~dualight.ThinDielectric` of index ``ior``) and a :class:`~dualight.Plastic`
+        floor (the white base, coat of index ``ior``).
     ior : float, optional
-        The glass sphere's index of refraction (``"caustics"`` only; any value the
-        :class:`~dualight.Dielectric` accepts).
+        The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
+        the material accepts).
+    roughness_scale : float, optional
+        Multiplies every roughness of the ``"glossy"`` variant (a negative control), in
+        ``(0, 4]``.
 
     Returns
     -------
     Scene
         Meshes ``floor``, ``ceiling``, ``back_wall``, ``green_wall``, ``red_wall``, then
-        ``short_block`` and ``tall_block`` (classic) or ``mirror_sphere`` and
-        ``glass_sphere`` (caustics), then ``light``.
+        ``short_block`` and ``tall_block`` (classic), ``mirror_sphere`` and ``glass_sphere``
+        (caustics), ``gold_sphere`` and ``frosted_sphere`` (glossy) or ``copper_sphere`` and
+        ``bubble`` (coated), then ``light``.
 
     Raises
     ------
@@ -166,7 +192,22 @@ def cornell_box(
             f"cornell_box: reflectance_scale must be in [0, {1.0 / largest:.6g}] so every "
             f"reflectance stays <= 1, got {reflectance_scale!r}"
         )
-    glass = Dielectric(ior=ior) if variant == "caustics" else None
+    if not (math.isfinite(float(roughness_scale)) and 0.0 < float(roughness_scale) <= 4.0):
+        raise ValueError(f"cornell_box: roughness_scale must be in (0, 4], got {roughness_scale!r}")
+    spheres = variant != "classic"
+    if variant == "glossy":
+        a = float(roughness_scale)
+        sphere_materials: tuple[Material, Material] = (
+            RoughConductor(material="Au", alpha=0.2 * a, distribution="ggx"),
+            RoughDielectric(alpha=0.15 * a, ior=ior),
+        )
+        sphere_names = ("gold_sphere", "frosted_sphere")
+    elif variant == "coated":
+        sphere_materials = (Conductor(material="Cu"), ThinDielectric(ior=ior))
+        sphere_names = ("copper_sphere", "bubble")
+    elif spheres:
+        sphere_materials = (Mirror((reflectance_scale,) * 3), Dielectric(ior=ior))
+        sphere_names = ("mirror_sphere", "glass_sphere")
 
     scene = Scene(camera=cornell_camera(resolution))
     materials = {
@@ -179,7 +220,7 @@ def cornell_box(
         "tall_block": CORNELL_WHITE,
     }
     for name, rho in materials.items():
-        if name.endswith("block") and variant == "caustics":
+        if name.endswith("block") and spheres:
             continue
         quads = [np.array(q, dtype=np.float64) for q in _CORNELL_QUADS[name]]
         if name.endswith("block"):
@@ -188,12 +229,26 @@ def cornell_box(
         else:
             quads = [_orient(q, _CORNELL_ROOM_CENTRE, inward=True) for q in quads]
         v, f = _quads_mesh(quads)
-        scene.add_mesh(v, f, reflectance=tuple(reflectance_scale * c for c in rho), name=name)
-    if glass is not None:
-        mirror = Mirror((reflectance_scale,) * 3)
-        for name, (centre, radius), material in (
-            ("mirror_sphere", CORNELL_MIRROR_SPHERE, mirror),
-            ("glass_sphere", CORNELL_GLASS_SPHERE, glass),
+        albedo = tuple(reflectance_scale * c for c in rho)
+        if name == "floor" and variant == "glossy":
+            coat = RoughPlastic(
+                diffuse_reflectance=albedo,
+                alpha=0.3 * float(roughness_scale),
+                distribution="ggx",
+                ior=1.5,
+            )
+            scene.add_mesh(v, f, material=coat, name=name)
+            continue
+        if name == "floor" and variant == "coated":
+            scene.add_mesh(v, f, material=Plastic(diffuse_reflectance=albedo, ior=ior), name=name)
+            continue
+        scene.add_mesh(v, f, reflectance=albedo, name=name)
+    if spheres:
+        for name, (centre, radius), material in zip(
+            sphere_names,
+            (CORNELL_MIRROR_SPHERE, CORNELL_GLASS_SPHERE),
+            sphere_materials,
+            strict=True,
         ):
             v, f = icosphere(centre, radius, _CORNELL_SPHERE_SUBDIVISIONS)
             scene.add_mesh(v, f, material=material, name=name)

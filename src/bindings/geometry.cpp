@@ -79,6 +79,7 @@ void bind_geometry(py::module_& m) {
             d["specular"] = f.specular;
             d["dielectric"] = f.dielectric;
             d["all_diffuse"] = f.all_diffuse();
+            d["mixed_delta"] = f.mixed_delta;
             d["emitter_triangles"] = f.emitter_triangles;
             d["closed"] = f.closed;
             d["convex_enclosure"] = f.convex_enclosure;

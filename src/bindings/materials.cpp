@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "bindings/bsdf_parameters.h"
 #include "bindings/numpy_util.h"
 
 namespace dualight::bindings {
@@ -37,8 +38,13 @@ Bsdf make_bsdf(uint32_t kind, const Color& reflectance, float ior) {
         throw py::value_error("dielectric ior must be finite and > 0, got " + std::to_string(ior));
       }
       return Dielectric{ior};
+    default:
+      break;
   }
-  throw py::value_error("unknown BSDF kind " + std::to_string(kind) + " (0 lambertian, 1 mirror, 2 dielectric)");
+  if (kind >= std::variant_size_v<Bsdf>) throw py::value_error("unknown BSDF kind " + std::to_string(kind));
+  throw py::value_error("BSDF kind " + std::to_string(kind) +
+                        " is not made from (reflectance, ior): 0 lambertian, 1 mirror and 2 dielectric are; "
+                        "use the Bsdf.conductor, ... constructors for the others");
 }
 
 namespace {
@@ -70,15 +76,22 @@ void bind_materials(py::module_& m) {
   py::enum_<BsdfKind>(m, "BsdfKind", "Kinds of BSDF; the values index the arrays of Scene(kind=...).")
       .value("lambertian", BsdfKind::Lambertian)
       .value("mirror", BsdfKind::Mirror)
-      .value("dielectric", BsdfKind::Dielectric);
+      .value("dielectric", BsdfKind::Dielectric)
+      .value("conductor", BsdfKind::Conductor)
+      .value("rough_conductor", BsdfKind::RoughConductor)
+      .value("thin_dielectric", BsdfKind::ThinDielectric)
+      .value("rough_dielectric", BsdfKind::RoughDielectric)
+      .value("plastic", BsdfKind::Plastic)
+      .value("rough_plastic", BsdfKind::RoughPlastic);
 
   py::enum_<TransportMode>(m, "TransportMode", "Which quantity a path carries (radiance from lights, importance from the camera).")
       .value("radiance", TransportMode::Radiance)
       .value("importance", TransportMode::Importance);
 
-  py::class_<BsdfObject>(m, "Bsdf",
+  py::class_<BsdfObject> bsdf_class(m, "Bsdf",
                    "One BSDF in its local frame (z = geometric normal, the exterior side for a dielectric); "
-                   "vectorised for tests. Directions point away from the surface.")
+                   "vectorised for tests. Directions point away from the surface.");
+  bsdf_class
       .def(py::init([](BsdfKind kind, const std::array<float, 3>& reflectance, float ior) {
              return BsdfObject{
                  make_bsdf(static_cast<uint32_t>(kind), {reflectance[0], reflectance[1], reflectance[2]}, ior)};
@@ -154,6 +167,7 @@ void bind_materials(py::module_& m) {
           },
           py::arg("wo"), py::arg("wi"), py::arg("mode") = TransportMode::Radiance,
           "Solid-angle density (N,) of sample() producing wi given wo; 0 for delta BSDFs.");
+  bind_bsdf_parameters(bsdf_class);
 
   m.def(
       "fresnel_dielectric",

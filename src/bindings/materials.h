@@ -10,10 +10,22 @@
 namespace dualight::bindings {
 
 // A BSDF's kind as Python passes it; the value is the alternative's index in `Bsdf`.
-enum class BsdfKind : uint32_t { Lambertian = 0, Mirror = 1, Dielectric = 2 };
+enum class BsdfKind : uint32_t {
+  Lambertian = 0,
+  Mirror = 1,
+  Dielectric = 2,
+  Conductor = 3,
+  RoughConductor = 4,
+  ThinDielectric = 5,
+  RoughDielectric = 6,
+  Plastic = 7,
+  RoughPlastic = 8,
+};
 static_assert(std::is_same_v<std::variant_alternative_t<0, Bsdf>, Lambertian> &&
                   std::is_same_v<std::variant_alternative_t<1, Bsdf>, Mirror> &&
-                  std::is_same_v<std::variant_alternative_t<2, Bsdf>, Dielectric>,
+                  std::is_same_v<std::variant_alternative_t<2, Bsdf>, Dielectric> &&
+                  std::is_same_v<std::variant_alternative_t<8, Bsdf>, RoughPlastic> &&
+                  std::variant_size_v<Bsdf> == 9,
               "BsdfKind values must follow the order of Bsdf's alternatives");
 
 // `reflectance` is the Lambertian albedo or the mirror's reflectance (ignored by a dielectric),

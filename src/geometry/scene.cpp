@@ -90,15 +90,15 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     emitters_.push_back(std::move(e));
   }
   emitter_sampler_ = PowerEmitterSampler(emitters_);
-  bool specular = false, transmission = false, all_diffuse = true;
+  MaterialFeatures used;
   for (const uint32_t m : material_of_) {
     const BsdfFlags f = flags(materials_[m].bsdf);
-    specular = specular || has_specular(f);
-    transmission = transmission || has_transmission(f);
-    all_diffuse = all_diffuse && is_diffuse_reflector(f);
+    used.specular = used.specular || has_specular(f);
+    used.transmission = used.transmission || has_transmission(f);
+    used.all_diffuse = used.all_diffuse && is_diffuse_reflector(f);
+    used.mixed_delta = used.mixed_delta || mixes_delta(f);
   }
-  features_ = compute_scene_features(positions_, triangles_, normal_, {specular, transmission, all_diffuse},
-                                     emitter_triangles);
+  features_ = compute_scene_features(positions_, triangles_, normal_, used, emitter_triangles);
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 

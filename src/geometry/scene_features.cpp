@@ -74,6 +74,7 @@ SceneFeatures compute_scene_features(const std::vector<float>& positions, const 
   f.specular = materials.specular;
   f.dielectric = materials.transmission;
   f.diffuse_only = materials.all_diffuse;
+  f.mixed_delta = materials.mixed_delta;
   f.emitter_triangles = emitter_triangles;
   const std::vector<uint32_t> id = merged_vertex_ids(positions);
   f.closed = is_closed(triangles, id);

@@ -30,12 +30,14 @@ struct MaterialFeatures {
   bool specular = false;      // some BSDF has a Dirac lobe
   bool transmission = false;  // some BSDF transmits (light can pass behind a surface)
   bool all_diffuse = true;    // every BSDF is a diffuse reflector only
+  bool mixed_delta = false;   // some BSDF has Dirac and non-Dirac lobes (smooth plastic)
 };
 
 struct SceneFeatures {
   bool specular = false;    // some BSDF has a Dirac lobe (a mirror, glass)
   bool dielectric = false;  // some BSDF transmits (glass: light can pass behind a surface)
   bool diffuse_only = true;  // every BSDF is a diffuse reflector only (what radiosity solves)
+  bool mixed_delta = false;  // some BSDF has Dirac and non-Dirac lobes (smooth plastic)
   bool closed = false;
   bool convex_enclosure = false;
   bool convexity_checked = false;  // false when the scene was too large to check (then not convex)

@@ -30,6 +30,11 @@ constexpr bool is_delta(BsdfFlags f) {
 }
 // Some Dirac lobe (MLT's caustic and multi-chain perturbations need one in the scene).
 constexpr bool has_specular(BsdfFlags f) { return has_any(f, BsdfFlags::Specular); }
+// Dirac lobes beside non-Dirac ones (smooth plastic's coat over its base): a vertex is specular
+// or not by the lobe a path takes there, not by its BSDF.
+constexpr bool mixes_delta(BsdfFlags f) {
+  return has_any(f, BsdfFlags::Specular) && has_any(f, BsdfFlags::Diffuse | BsdfFlags::Glossy);
+}
 // Light passes to the other side of the surface.
 constexpr bool has_transmission(BsdfFlags f) { return has_any(f, BsdfFlags::Transmission); }
 // Only diffuse reflection: what radiosity can solve (view-independent outgoing radiance).

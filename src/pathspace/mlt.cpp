@@ -252,6 +252,17 @@ Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOpt
 }  // namespace
 
 // One population of every path length: the chains that found a start path share the mutations.
+void check_path_space_supports(const Scene& scene) {
+  // A path's vertices are specular or not by their BSDF (full_path.h), so a path through the
+  // Dirac lobe of a BSDF that also has a diffuse or glossy one would be evaluated without it.
+  if (scene.features().mixed_delta) {
+    throw std::invalid_argument(
+        "path-space MLT (method 'mlt') does not support BSDFs with both Dirac and diffuse or glossy lobes "
+        "(smooth plastic): it would miss the light of the Dirac lobe; use 'pssmlt', 'mmlt' or 'bdpt', or "
+        "roughplastic");
+  }
+}
+
 ChainStartUpShape mlt_start_up_shape(const MltOptions& opt, size_t pixels) {
   ChainStartUpShape shape;
   shape.chains = std::max<uint32_t>(opt.chains, 1);
@@ -261,6 +272,7 @@ ChainStartUpShape mlt_start_up_shape(const MltOptions& opt, size_t pixels) {
 
 ChainStartUp mlt_start_up(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
                           RenderControl& control, const std::function<double()>& elapsed) {
+  check_path_space_supports(scene);
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
   ChainStartUp start;
   MltStats& mlt = start.mlt;
@@ -338,6 +350,7 @@ namespace {
 ChainPart run_chains(const Scene& scene, const PinholeCamera& camera, const MltOptions& opt,
                      const ChainStartUp& start, uint64_t first, uint64_t count, RenderControl& control,
                      const std::function<double()>& elapsed, const MltChainHooks& hooks) {
+  check_path_space_supports(scene);
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
   check_chain_start_up(start, pixels, mlt_start_up_shape(opt, pixels));
   ChainPart part = empty_part(start, first, count);

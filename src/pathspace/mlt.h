@@ -78,6 +78,10 @@ struct PathMltResult {
 PathMltResult render_mlt(const Scene& scene, const PinholeCamera& camera, const MltOptions& options,
                          RenderControl& control, const MltChainHooks& hooks = {});
 
+// Throws std::invalid_argument when the scene holds what path-space MLT cannot render: a BSDF
+// that mixes Dirac and non-Dirac lobes (smooth plastic).
+void check_path_space_supports(const Scene& scene);
+
 // render_mlt in the three parts of chain_split.h, for renders split into tasks; as
 // pssmlt_start_up, pssmlt_chains and pssmlt_finish.
 ChainStartUpShape mlt_start_up_shape(const MltOptions& options, size_t pixels);

@@ -30,6 +30,12 @@ The references (see README.md beside them for how long they took):
   about 16 (median), hence the 524288 spp.
 * ``caustics_64``: ``cornell_box(resolution=(64, 64), variant="caustics")`` (the Cornell box
   with a mirror and a glass sphere, ``ior=1.5``), ``max_depth=8``, ``rr_depth=5``.
+* ``glossy_64``: ``cornell_box(resolution=(64, 64), variant="glossy")`` (rough gold and
+  frosted-glass spheres on a rough-plastic floor: Mitsuba's ``roughconductor``,
+  ``roughdielectric`` and ``roughplastic``), ``max_depth=8``, ``rr_depth=5``.
+* ``coated_64``: ``cornell_box(resolution=(64, 64), variant="coated")`` (a smooth copper
+  sphere, a thin-glass bubble, a smooth-plastic floor: ``conductor``, ``thindielectric``,
+  ``plastic``), ``max_depth=8``, ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -96,6 +102,20 @@ def _references() -> dict[str, Reference]:
             'cornell_box(resolution=(64, 64), variant="caustics")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="caustics"),
             spp=262144,
+            max_depth=8,
+        ),
+        Reference(
+            "glossy_64",
+            'cornell_box(resolution=(64, 64), variant="glossy")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="glossy"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "coated_64",
+            'cornell_box(resolution=(64, 64), variant="coated")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="coated"),
+            spp=131072,
             max_depth=8,
         ),
     ]

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from dualight.io._common import PathLike
-from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.materials import Material
 from dualight.scene import Scene
 
 __all__ = ["save_mitsuba_xml"]
@@ -26,22 +26,29 @@ def _element(parent: ET.Element, tag: str, **attrib: Any) -> ET.Element:
     return ET.SubElement(parent, tag, {k: str(v) for k, v in attrib.items()})
 
 
+def _write_plugin(parent: ET.Element, tag: str, plugin: dict[str, Any], name: str = "") -> None:
+    """A Mitsuba plugin dict (``mitsuba.load_dict`` form) as an XML element."""
+    attrib = {"type": plugin["type"]} | ({"name": name} if name else {})
+    element = _element(parent, tag, **attrib)
+    for key, value in plugin.items():
+        if key == "type":
+            continue
+        if isinstance(value, dict) and value.get("type") == "rgb":
+            _element(element, "rgb", name=key, value=_fmt(value["value"]))
+        elif isinstance(value, dict):
+            _write_plugin(element, tag, value)
+        elif isinstance(value, bool):
+            _element(element, "boolean", name=key, value=str(value).lower())
+        elif isinstance(value, str):
+            _element(element, "string", name=key, value=value)
+        else:
+            _element(element, "float", name=key, value=repr(float(value)))
+
+
 def _write_bsdf(parent: ET.Element, material: Material) -> None:
-    if isinstance(material, Diffuse):
-        two = _element(parent, "bsdf", type="twosided")
-        inner = _element(two, "bsdf", type="diffuse")
-        _element(inner, "rgb", name="reflectance", value=_fmt(material.reflectance))
-    elif isinstance(material, Mirror):
-        two = _element(parent, "bsdf", type="twosided")
-        inner = _element(two, "bsdf", type="conductor")
-        _element(inner, "string", name="material", value="none")
-        _element(inner, "rgb", name="specular_reflectance", value=_fmt(material.reflectance))
-    elif isinstance(material, Dielectric):
-        inner = _element(parent, "bsdf", type="dielectric")
-        _element(inner, "float", name="int_ior", value=repr(float(material.ior)))
-        _element(inner, "float", name="ext_ior", value="1.0")
-    else:
+    if not isinstance(material, Material):
         raise TypeError(f"unknown material {type(material).__name__}")
+    _write_plugin(parent, "bsdf", material._mitsuba_bsdf())
 
 
 def save_mitsuba_xml(

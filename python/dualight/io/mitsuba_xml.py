@@ -15,7 +15,19 @@ from typing import Any
 import numpy as np
 
 from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
-from dualight.materials import Dielectric, Diffuse, Material, Mirror
+from dualight.materials import (
+    Conductor,
+    Dielectric,
+    Diffuse,
+    Material,
+    Mirror,
+    Plastic,
+    RoughConductor,
+    RoughDielectric,
+    RoughPlastic,
+    ThinDielectric,
+    TwoSided,
+)
 from dualight.scene import Camera, Scene
 
 __all__ = ["load_mitsuba_xml", "read_mitsuba_settings"]
@@ -25,7 +37,17 @@ __all__ = ["load_mitsuba_xml", "read_mitsuba_settings"]
 
 _SUPPORTED = {
     "shape": ("obj", "ply", "rectangle", "cube", "sphere"),
-    "bsdf": ("diffuse", "twosided", "conductor", "dielectric"),
+    "bsdf": (
+        "diffuse",
+        "twosided",
+        "conductor",
+        "roughconductor",
+        "dielectric",
+        "thindielectric",
+        "roughdielectric",
+        "plastic",
+        "roughplastic",
+    ),
     "emitter": ("area (inside a shape)",),
     "sensor": ("perspective",),
     "film": ("hdrfilm",),
@@ -298,6 +320,34 @@ def _apply(m: np.ndarray, v: np.ndarray) -> np.ndarray:
 # Mitsuba 3 XML: BSDFs, shapes, sensor
 
 
+_RGB_OR_FLOAT = ("rgb", "float")
+_ROUGHNESS = {
+    "distribution": ("string",),
+    "alpha": ("float",),
+    "alpha_u": ("float",),
+    "alpha_v": ("float",),
+    "sample_visible": ("boolean",),
+}
+_METAL = {"material": ("string",), "eta": _RGB_OR_FLOAT, "k": _RGB_OR_FLOAT}
+_IORS = {"int_ior": ("float", "string"), "ext_ior": ("float", "string")}
+_BSDF_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
+    "diffuse": {"reflectance": _RGB_OR_FLOAT},
+    "conductor": _METAL | {"specular_reflectance": _RGB_OR_FLOAT},
+    "roughconductor": _METAL | _ROUGHNESS | {"specular_reflectance": _RGB_OR_FLOAT},
+    "dielectric": _IORS
+    | {"specular_reflectance": _RGB_OR_FLOAT, "specular_transmittance": _RGB_OR_FLOAT},
+    "thindielectric": _IORS,
+    "roughdielectric": _IORS | _ROUGHNESS,
+    "plastic": _IORS
+    | {
+        "diffuse_reflectance": _RGB_OR_FLOAT,
+        "specular_reflectance": _RGB_OR_FLOAT,
+        "nonlinear": ("boolean",),
+    },
+}
+_BSDF_PROPERTIES["roughplastic"] = _BSDF_PROPERTIES["plastic"] | _ROUGHNESS
+
+
 def _bsdf(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:
     kind = ctx.attr(element, "type")
     if kind == "twosided":
@@ -308,72 +358,99 @@ def _bsdf(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> 
                 element,
                 "twosided must hold exactly one BSDF (two different sides are not supported)",
             )
-        material = _bsdf_or_ref(ctx, inner[0], bsdfs)
-        if isinstance(material, Dielectric):
-            raise ctx.error(element, "twosided around a dielectric is not supported")
-        return material
-    if kind == "diffuse":
-        props = _properties(ctx, element, {"reflectance": ("rgb", "float")}, "diffuse")
-        _no_children(ctx, element)
-        rho = _rgb_value(ctx, props["reflectance"]) if "reflectance" in props else (0.5,) * 3
         try:
-            return Diffuse(rho)
+            both = TwoSided(_bsdf_or_ref(ctx, inner[0], bsdfs))
         except ValueError as exc:
             raise ctx.error(element, str(exc)) from None
-    if kind == "conductor":
-        props = _properties(
-            ctx,
-            element,
-            {
-                "material": ("string",),
-                "specular_reflectance": ("rgb", "float"),
-                "eta": ("rgb", "float"),
-                "k": ("rgb", "float"),
-            },
-            "conductor",
+        if type(both) is Conductor and both.eta == (0.0,) * 3 and both.k == (1.0,) * 3:
+            return Mirror(both.specular_reflectance)  # the same BSDF (Fresnel is 1), by its name
+        return both
+    if kind not in _BSDF_PROPERTIES:
+        supported = ", ".join(["twosided", *_BSDF_PROPERTIES])
+        raise ctx.error(element, f"BSDF type {kind!r} is not supported (supported: {supported})")
+    props = _properties(ctx, element, _BSDF_PROPERTIES[kind], kind)
+    _no_children(ctx, element)
+    try:
+        return _BSDF_BUILDERS[kind](ctx, props)
+    except (ValueError, TypeError) as exc:
+        raise ctx.error(element, str(exc)) from None
+
+
+def _rgb_or(ctx: _Context, props: Mapping[str, ET.Element], key: str, default: float) -> Any:
+    return _rgb_value(ctx, props[key]) if key in props else default
+
+
+def _number_or_none(ctx: _Context, props: Mapping[str, ET.Element], key: str) -> float | None:
+    return _number(ctx, props[key], 0.0) if key in props else None
+
+
+def _roughness_keywords(ctx: _Context, props: Mapping[str, ET.Element]) -> dict[str, Any]:
+    if not _boolean(ctx, props.get("sample_visible"), True):
+        warnings.warn(
+            f"{str(ctx.path)!r}: sample_visible=false is ignored (dualight always samples "
+            "visible normals; the BSDF is the same, only the noise differs)",
+            UserWarning,
+            stacklevel=5,
         )
-        _no_children(ctx, element)
-        # Mitsuba 3's default material "none" is a perfect mirror (eta 0, k 1): exact here. A
-        # named metal or explicit eta/k has a Fresnel reflectance dualight does not model.
-        metal = _string(ctx, props.get("material"), "none")
-        if metal != "none" or "eta" in props or "k" in props:
-            what = f"material {metal!r}" if metal != "none" else "eta/k"
-            warnings.warn(
-                f'{str(ctx.path)!r}: <bsdf type="conductor"> with {what} (a metal with Fresnel '
-                "reflectance in Mitsuba) is loaded as a perfect mirror (dualight.Mirror, no "
-                'Fresnel term); leave material at "none" for an exact match',
-                UserWarning,
-                stacklevel=4,
-            )
-        rho = (1.0, 1.0, 1.0)
-        if "specular_reflectance" in props:
-            rho = _rgb_value(ctx, props["specular_reflectance"])
-        try:
-            return Mirror(rho)
-        except ValueError as exc:
-            raise ctx.error(element, str(exc)) from None
-    if kind == "dielectric":
-        props = _properties(
-            ctx,
-            element,
-            {
-                "int_ior": ("float", "string"),
-                "ext_ior": ("float", "string"),
-                "specular_reflectance": ("float", "rgb"),
-                "specular_transmittance": ("float", "rgb"),
-            },
-            "dielectric",
-        )
-        _no_children(ctx, element)
-        for key in ("specular_reflectance", "specular_transmittance"):
-            if key in props and _rgb_value(ctx, props[key]) != (1.0, 1.0, 1.0):
-                raise ctx.error(props[key], f"dielectric {key} other than 1 is not supported")
-        int_ior = _ior(ctx, props.get("int_ior"), "bk7")
-        ext_ior = _ior(ctx, props.get("ext_ior"), "air")
-        return Dielectric(ior=int_ior / ext_ior)
-    raise ctx.error(
-        element, f"BSDF type {kind!r} is not supported (supported: {', '.join(_SUPPORTED['bsdf'])})"
+    keywords = {k: _number_or_none(ctx, props, k) for k in ("alpha", "alpha_u", "alpha_v")}
+    keywords["distribution"] = _string(ctx, props.get("distribution"), "beckmann").lower()
+    return keywords
+
+
+def _metal_keywords(ctx: _Context, props: Mapping[str, ET.Element]) -> dict[str, Any]:
+    metal = _string(ctx, props.get("material"), "none") if "material" in props else None
+    return {
+        "material": metal,
+        "eta": _rgb_value(ctx, props["eta"]) if "eta" in props else None,
+        "k": _rgb_value(ctx, props["k"]) if "k" in props else None,
+        "specular_reflectance": _rgb_or(ctx, props, "specular_reflectance", 1.0),
+    }
+
+
+def _relative(ctx: _Context, props: Mapping[str, ET.Element], interior: str) -> float:
+    return _ior(ctx, props.get("int_ior"), interior) / _ior(ctx, props.get("ext_ior"), "air")
+
+
+def _plastic_keywords(ctx: _Context, props: Mapping[str, ET.Element]) -> dict[str, Any]:
+    return {
+        "diffuse_reflectance": _rgb_or(ctx, props, "diffuse_reflectance", 0.5),
+        "specular_reflectance": _rgb_or(ctx, props, "specular_reflectance", 1.0),
+        "ior": _relative(ctx, props, "polypropylene"),
+        "nonlinear": _boolean(ctx, props.get("nonlinear"), False),
+    }
+
+
+def _dielectric(ctx: _Context, props: Mapping[str, ET.Element]) -> Material:
+    for key in ("specular_reflectance", "specular_transmittance"):
+        if key in props and _rgb_value(ctx, props[key]) != (1.0, 1.0, 1.0):
+            raise ctx.error(props[key], f"dielectric {key} other than 1 is not supported")
+    return Dielectric(ior=_relative(ctx, props, "bk7"))
+
+
+def _rough_plastic(ctx: _Context, props: Mapping[str, ET.Element]) -> Material:
+    rough = _roughness_keywords(ctx, props)
+    if rough["alpha_u"] is not None or rough["alpha_v"] is not None:
+        raise ValueError("roughplastic takes an isotropic alpha only (as Mitsuba)")
+    alpha = 0.1 if rough["alpha"] is None else rough["alpha"]
+    return RoughPlastic(
+        alpha=alpha, distribution=rough["distribution"], **_plastic_keywords(ctx, props)
     )
+
+
+_BSDF_BUILDERS: dict[str, Any] = {
+    "diffuse": lambda ctx, p: Diffuse(_rgb_or(ctx, p, "reflectance", (0.5, 0.5, 0.5))),
+    "conductor": lambda ctx, p: Conductor(**_metal_keywords(ctx, p)),
+    "roughconductor": lambda ctx, p: RoughConductor(
+        **_roughness_keywords(ctx, p), **_metal_keywords(ctx, p)
+    ),
+    "dielectric": _dielectric,
+    "thindielectric": lambda ctx, p: ThinDielectric(ior=_relative(ctx, p, "bk7")),
+    "roughdielectric": lambda ctx, p: RoughDielectric(
+        **_roughness_keywords(ctx, p), ior=_relative(ctx, p, "bk7")
+    ),
+    "plastic": lambda ctx, p: Plastic(**_plastic_keywords(ctx, p)),
+    "roughplastic": _rough_plastic,
+}
 
 
 def _ior(ctx: _Context, element: ET.Element | None, default: str) -> float:
@@ -791,11 +868,12 @@ def load_mitsuba_xml(
       ``sphere_subdivisions``), each with ``flip_normals`` and a ``to_world`` ``<transform>``
       of ``translate``, ``scale``, ``rotate``, ``matrix`` and ``lookat`` operations;
     * BSDFs, inline or top-level with an ``id`` and referenced by ``<ref id>``: ``diffuse``
-      (RGB ``reflectance``), ``twosided`` around one of them, ``conductor`` with Mitsuba 3's
-      default ``material="none"``, a perfect mirror (:class:`~dualight.Mirror` with
-      ``specular_reflectance``, default 1), ``dielectric``
-      (:class:`~dualight.Dielectric` with ``ior = int_ior / ext_ior``, numbers or Mitsuba's
-      IOR names; defaults bk7 and air as in Mitsuba);
+      (RGB ``reflectance``), ``twosided`` around any reflector, ``conductor`` (Mitsuba's
+      named metals or ``eta``/``k``; ``material="none"``, a perfect mirror, by default),
+      ``roughconductor``, ``dielectric``, ``thindielectric``, ``roughdielectric``,
+      ``plastic`` and ``roughplastic`` with Mitsuba 3's parameters (``int_ior``/``ext_ior``
+      as numbers or Mitsuba's IOR names, defaults as in Mitsuba); see
+      :mod:`dualight.materials`;
     * ``<emitter type="area">`` inside a shape with an RGB ``radiance`` (one-sided, on the
       normals' side);
     * ``<sensor type="perspective">`` with ``fov``, ``fov_axis`` (x, y, diagonal, smaller,
@@ -803,14 +881,14 @@ def load_mitsuba_xml(
       its ``<film type="hdrfilm">`` ``width`` and ``height``; its sampler's ``sample_count``
       and the ``<integrator>`` settings are read by :func:`read_mitsuba_settings`.
 
-    Approximations, each with a ``UserWarning``: a ``conductor`` with a named ``material``
-    (``"Au"``, ...) or ``eta``/``k`` (a metal with Fresnel reflectance) becomes a perfect
-    mirror; a pixel filter other than ``box`` (Mitsuba's default is a Gaussian) is replaced by
-    dualight's box filter; ``obj``/``ply`` meshes without ``face_normals`` render flat where
-    Mitsuba would interpolate vertex normals. Without a warning: dualight's diffuse and mirror
-    BSDFs are two-sided, so a one-sided Mitsuba ``diffuse`` or ``conductor`` differs only where
-    light reaches the back of a surface; a shape without a BSDF gets Mitsuba's default: diffuse
-    0.5, or black if it emits.
+    Approximations, each with a ``UserWarning``: ``sample_visible=false`` on a rough BSDF is
+    ignored (dualight samples visible normals: the same BSDF, other noise); a pixel filter
+    other than ``box`` (Mitsuba's default is a Gaussian) is replaced by dualight's box filter;
+    ``obj``/``ply`` meshes without ``face_normals`` render flat where Mitsuba would interpolate
+    vertex normals. Without a warning: dualight's ``diffuse`` is two-sided, so a one-sided
+    Mitsuba ``diffuse`` differs only where light reaches the back of a surface (conductors and
+    plastics are one-sided unless in ``twosided``, as in Mitsuba); a shape without a BSDF gets
+    Mitsuba's default: diffuse 0.5, or black if it emits.
 
     Everything else (other plugin types, textures, spectra, stand-alone emitters, includes,
     unknown properties) raises a ``ValueError`` that names the element and the file.
