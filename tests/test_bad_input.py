@@ -346,10 +346,10 @@ SCENE_FILES = [
     (
         "xml unsupported bsdf",
         lambda t: dualight.load_mitsuba_xml(
-            _scene_xml(t, '<shape type="cube"><bsdf type="roughplastic"/></shape>')
+            _scene_xml(t, '<shape type="cube"><bsdf type="hair"/></shape>')
         ),
         ValueError,
-        "BSDF type 'roughplastic' is not supported",
+        "BSDF type 'hair' is not supported",
     ),
     (
         "xml NaN",

@@ -135,11 +135,37 @@ def test_obj_without_materials_gets_the_default(tmp_path: Path) -> None:
 
 
 def test_obj_ignored_mtl_statements_warn(tmp_path: Path) -> None:
-    mtl = MTL.replace("Kd 0.25 0.5 0.75", "Kd 0.25 0.5 0.75\nmap_Kd wood.png\nKs 0.5 0.5 0.5")
-    with pytest.warns(UserWarning, match=r"white: map_kd, ks.*only Kd \(diffuse\) and Ke"):
+    mtl = MTL.replace("Kd 0.25 0.5 0.75", "Kd 0.25 0.5 0.75\nmap_Kd wood.png\nd 0.5")
+    with pytest.warns(UserWarning, match=r"white: map_kd, d.*only Kd \(diffuse\), Ks and Ns"):
         scene = dualight.load_obj(_obj(tmp_path, mtl=mtl))
     white = {m.name: m for m in scene.meshes}["room/white"]
     assert white.material == dualight.Diffuse((0.25, 0.5, 0.75))
+
+
+def test_obj_phong_lobes_become_microfacet_materials(tmp_path: Path) -> None:
+    """Ks/Ns map to the nearest microfacet material with a warning that it is approximate:
+    over a diffuse Kd a rough plastic, alone a rough conductor; alpha = sqrt(2 / (Ns + 2))."""
+    mtl = MTL.replace("Kd 0.25 0.5 0.75", "Kd 0.25 0.5 0.75\nKs 0.5 0.5 1.5\nNs 98")
+    mtl += "newmtl metal\nKd 0 0 0\nKs 0.9 0.8 0.7\nNs 8\n"
+    obj = OBJ + "usemtl metal\nf 1 2 5\n"
+    with pytest.warns(UserWarning, match=r"metal as RoughConductor, white as RoughPlastic"):
+        scene = dualight.load_obj(_obj(tmp_path, obj, mtl))
+    m = {mesh.name: mesh.material for mesh in scene.meshes}
+    assert m["room/white"] == dualight.RoughPlastic(
+        diffuse_reflectance=(0.25, 0.5, 0.75),
+        specular_reflectance=(0.5, 0.5, 1.0),
+        alpha=math.sqrt(2 / 100),
+        ior=1.5,
+    )
+    assert m["room/metal"] == dualight.RoughConductor(
+        alpha=math.sqrt(0.2), specular_reflectance=(0.9, 0.8, 0.7)
+    )
+    with warnings.catch_warnings():  # Ks 0 is no lobe: diffuse, without a warning
+        warnings.simplefilter("error")
+        plain = dualight.load_obj(_obj(tmp_path, mtl=MTL.replace("Kd 0 0 0", "Kd 0 0 0\nKs 0 0 0")))
+        assert {mesh.name for mesh in plain.meshes} == {"room/white", "room/lamp"}
+    with pytest.raises(ValueError, match="Ks must be 1 or 3 finite numbers"):
+        dualight.load_obj(_obj(tmp_path, mtl=MTL + "Ks 1 nan 1\n"))
 
 
 @pytest.mark.parametrize(

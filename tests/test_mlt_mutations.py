@@ -131,7 +131,6 @@ CASES = {
     "multi_chain_perturbation": Case("glass_caustic", 4, 128, 1024, 64),
     "bidirectional (glossy)": Case("glossy_box", 4, 0, 1024, 64),
     "lens_perturbation (glossy)": Case("glossy_box", 4, 0, 256, 128),
-    "lens_subpath (glossy)": Case("glossy_box", 4, 0, 1024, 64),
 }
 
 

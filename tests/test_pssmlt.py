@@ -102,9 +102,11 @@ NOT_B_NORMALISED = {"mlt_flat"}
 CASES = [("cornell", v) for v in VARIANTS] + [
     (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
 ]
-# Glossy and coated materials in the three Metropolis methods (path-space MLT refuses the
-# smooth plastic floor: its Dirac coat over a diffuse base); block tests only.
-MATERIAL_CASES = [("glossy", v) for v in ("pssmlt", "mmlt", "mlt")] + [("coated", "mmlt")]
+# Glossy and coated materials in the Metropolis methods (path-space MLT refuses the smooth
+# plastic floor: its Dirac coat over a diffuse base); block tests only. PSSMLT, which shares
+# MMLT's BDPT, passed on the glossy box too (100 % of blocks, max |t| 4.90 against 6.38; the
+# control 73 %) and is left out of the suite for its time (30 s).
+MATERIAL_CASES = [("glossy", "mmlt"), ("glossy", "mlt"), ("coated", "mmlt")]
 
 
 @functools.cache

@@ -13,8 +13,6 @@
 // probability of the lobe it picked (1 for a mirror, the Fresnel reflectance or transmittance
 // for glass) and BsdfSample::delta is set.
 #pragma once
-#include <cstddef>
-#include <utility>
 #include <variant>
 
 #include "materials/conductor.h"
@@ -32,40 +30,44 @@ namespace dualight {
 using Bsdf = std::variant<Lambertian, Mirror, Dielectric, Conductor, RoughConductor, ThinDielectric,
                           RoughDielectric, Plastic, RoughPlastic>;
 
-// std::visit as a chain of index tests in the variant's order (the most common BSDFs first),
-// which the compiler inlines: libstdc++'s visit of nine alternatives goes through a table of
-// function pointers, 3-5 % slower on Lambertian scenes than the three it had before.
-template <size_t I = 0, class F>
-decltype(auto) visit_bsdf(const Bsdf& b, F&& f) {
-  if constexpr (I + 1 < std::variant_size_v<Bsdf>) {
-    if (b.index() != I) return visit_bsdf<I + 1>(b, std::forward<F>(f));
-  }
-  return f(*std::get_if<I>(&b));
+inline BsdfFlags flags(const Bsdf& b) {
+  return std::visit([](const auto& x) { return flags(x); }, b);
 }
 
-inline BsdfFlags flags(const Bsdf& b) {
-  return visit_bsdf(b, [](const auto& x) { return flags(x); });
-}
+// The hot three (evaluation, density, sampling) take Lambertian surfaces inline and the other
+// members out of line (bsdf.cpp): a dispatch over all nine is too large to inline, and the
+// call it became made Lambertian scenes 3-5 % slower (BDPT's vertices evaluate it most).
+// Which member a BSDF is decides nothing here but where its code lives.
+namespace bsdf_dispatch {
+Color eval_f(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m);
+float pdf_w(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m);
+bool sample(const Bsdf& b, const Vec3& wo, Point2 u, TransportMode m, BsdfSample& s);
+}  // namespace bsdf_dispatch
+
 inline Color eval_f(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m) {
-  return visit_bsdf(b, [&](const auto& x) { return eval_f(x, wo, wi, m); });
+  if (const auto* x = std::get_if<Lambertian>(&b)) return eval_f(*x, wo, wi, m);
+  return bsdf_dispatch::eval_f(b, wo, wi, m);
 }
 inline float pdf_w(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m) {
-  return visit_bsdf(b, [&](const auto& x) { return pdf_w(x, wo, wi, m); });
+  if (const auto* x = std::get_if<Lambertian>(&b)) return pdf_w(*x, wo, wi, m);
+  return bsdf_dispatch::pdf_w(b, wo, wi, m);
 }
 inline bool sample(const Bsdf& b, const Vec3& wo, Point2 u, TransportMode m, BsdfSample& s) {
-  return visit_bsdf(b, [&](const auto& x) { return sample(x, wo, u, m, s); });
+  if (const auto* x = std::get_if<Lambertian>(&b)) return sample(*x, wo, u, m, s);
+  return bsdf_dispatch::sample(b, wo, u, m, s);
 }
+
 // The Dirac lobe joining wo (camera side) and wi (light side), local directions.
 inline DeltaLobe delta_lobe(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
-  return visit_bsdf(b, [&](const auto& x) { return delta_lobe(x, wo, wi); });
+  return std::visit([&](const auto& x) { return delta_lobe(x, wo, wi); }, b);
 }
 // The direction of the Dirac lobe (`refraction` or reflection) from local wo, wo.z != 0.
 inline bool delta_direction(const Bsdf& b, const Vec3& wo, bool refraction, Vec3& wi) {
-  return visit_bsdf(b, [&](const auto& x) { return delta_direction(x, wo, refraction, wi); });
+  return std::visit([&](const auto& x) { return delta_direction(x, wo, refraction, wi); }, b);
 }
 // The albedo of the diffuse lobe (0 without one): radiosity's rho.
 inline Color diffuse_reflectance(const Bsdf& b) {
-  return visit_bsdf(b, [](const auto& x) { return diffuse_reflectance(x); });
+  return std::visit([](const auto& x) { return diffuse_reflectance(x); }, b);
 }
 // True when every lobe is a Dirac delta: connections to this vertex carry nothing.
 inline bool is_delta(const Bsdf& b) { return is_delta(flags(b)); }

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
-from dualight.materials import Diffuse, Material
+from dualight.materials import Diffuse, Material, RoughConductor, RoughPlastic
 from dualight.scene import Scene
 
 __all__ = ["load_obj"]
@@ -150,9 +150,12 @@ def load_obj(
     the faces are split into one dualight mesh per material (``usemtl``), named
     ``"<file stem>/<material>"``. Each material becomes a :class:`~dualight.Diffuse` with the
     MTL's diffuse colour ``Kd`` and an emission (W m^-2 sr^-1, one-sided, on the
-    right-hand-rule normal's side) from its ``Ke``. Faces without a material get
+    right-hand-rule normal's side) from its ``Ke``; a material with a specular ``Ks`` becomes
+    the nearest microfacet material instead (a :class:`~dualight.RoughPlastic` over ``Kd``,
+    or without ``Kd`` a :class:`~dualight.RoughConductor`, Beckmann roughness from ``Ns``),
+    with a ``UserWarning`` that it is approximate. Faces without a material get
     ``default_reflectance`` and no emission. MTL statements dualight does not model (textures
-    such as ``map_Kd``, specular ``Ks``, transparency ``d``/``Tr``, ``Ni``) are ignored with a
+    such as ``map_Kd``, transparency ``d``/``Tr``, ``Ni``) are ignored with a
     ``UserWarning``; normals and texture coordinates are not used (dualight renders flat
     triangles). Zero-area triangles are dropped with a warning.
 
@@ -208,6 +211,7 @@ def load_obj(
         )
     geometries = _trimesh_geometries(obj, "obj", text)
     ignored: dict[str, list[str]] = {}
+    approximated: dict[str, str] = {}
     pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str]] = []
     for key, geom in geometries:
         material = getattr(getattr(geom, "visual", None), "material", None)
@@ -224,27 +228,72 @@ def load_obj(
             skipped = [
                 k for k in _MTL_IGNORED if k in statements and not _neutral(k, statements[k])
             ]
-            if skipped:
-                ignored[str(mname)] = skipped
         try:
-            diffuse = Diffuse(rho)
+            diffuse: Material = Diffuse(rho)
         except ValueError as exc:
             raise ValueError(f"{where}: Kd: {exc}") from None
+        if props is not None:
+            phong = _phong_material(rho, statements, where)
+            if phong is not None:
+                diffuse = phong
+                approximated[str(mname)] = type(phong).__name__
+                skipped = [k for k in skipped if k != "ks"]
+            if skipped:
+                ignored[str(mname)] = skipped
         name = f"{obj.stem}/{mname}" if mname else f"{obj.stem}/{key}"
         v, f = _mesh_arrays(geom, str(obj))
         emission = (Le[0] * scale, Le[1] * scale, Le[2] * scale)
         pending.append((v, f, diffuse, emission, name))
     for v, f, material, emission, name in pending:
         scene.add_mesh(v, f, emission=emission, material=material, name=name, degenerate="drop")
+    if approximated:
+        what = ", ".join(f"{m} as {kind}" for m, kind in approximated.items())
+        warnings.warn(
+            f"{str(obj)!r}: MTL Phong lobes (Ks, Ns) approximated by microfacet materials "
+            f"({what}; Beckmann alpha = sqrt(2 / (Ns + 2)))",
+            UserWarning,
+            stacklevel=2,
+        )
     if ignored:
         what = "; ".join(f"{m}: {', '.join(keys)}" for m, keys in ignored.items())
         warnings.warn(
             f"{str(obj)!r}: MTL statements dualight does not model were ignored ({what}); "
-            "only Kd (diffuse) and Ke (emission) are used",
+            "only Kd (diffuse), Ks and Ns (a Phong lobe) and Ke (emission) are used",
             UserWarning,
             stacklevel=2,
         )
     return scene
+
+
+def _phong_material(rho: RGB, statements: dict[str, Any], where: str) -> Material | None:
+    """The nearest dualight material to an MTL Phong lobe (``Ks`` non-zero), or None.
+
+    The Phong exponent ``Ns`` becomes a Beckmann roughness ``alpha = sqrt(2 / (Ns + 2))``
+    [Walter et al. 2007, eq. 32]; with a diffuse ``Kd`` the surface is a
+    :class:`~dualight.RoughPlastic` (IOR 1.5, ``Ks`` as its specular reflectance, each channel
+    clipped to ``[0, 1]``), without one a white :class:`~dualight.RoughConductor` scaled by
+    ``Ks``. Both are approximations: an MTL Phong lobe has no Fresnel term and no coat.
+    """
+    if "ks" not in statements:
+        return None
+    try:
+        ks = [float(x) for x in statements["ks"]]
+        ns = float(statements["ns"][0]) if statements.get("ns") else 0.0
+    except (TypeError, ValueError, IndexError):
+        raise ValueError(f"{where}: Ks and Ns must be numbers") from None
+    if len(ks) == 1:
+        ks = ks * 3
+    if len(ks) != 3 or not all(math.isfinite(x) for x in [*ks, ns]) or ns < 0:
+        raise ValueError(f"{where}: Ks must be 1 or 3 finite numbers and Ns finite and >= 0")
+    if not any(x > 0.0 for x in ks):
+        return None
+    spec = tuple(min(max(x, 0.0), 1.0) for x in ks)
+    alpha = max(math.sqrt(2.0 / (ns + 2.0)), 1e-3)
+    if any(c > 0.0 for c in rho):
+        return RoughPlastic(
+            diffuse_reflectance=rho, specular_reflectance=spec, alpha=alpha, ior=1.5
+        )
+    return RoughConductor(alpha=alpha, specular_reflectance=spec)
 
 
 def _neutral(key: str, value: Any) -> bool:
