@@ -118,7 +118,11 @@ def test_power_and_balance_heuristics_agree_in_expectation() -> None:
 
 
 def test_verify_recomputes_cached_path_quantities() -> None:
-    for scene in (scenes.cornell_box(resolution=(32, 32)), scenes.furnace(0.8, 1.0, (16, 16))):
+    for scene in (
+        scenes.cornell_box(resolution=(32, 32)),
+        scenes.furnace(0.8, 1.0, (16, 16)),
+        scenes.cornell_box(resolution=(32, 32), variant="smooth"),  # shading normals' weights
+    ):
         check = _testing.verify_random_subpaths(
             scene._compile(), scene.camera._compile(), 4000, max_depth=8, seed=2
         )

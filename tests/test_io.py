@@ -337,6 +337,17 @@ def test_xml_rectangle_cube_sphere(tmp_path: Path) -> None:
     assert np.all(np.einsum("ij,ij->i", _normals(sphere), centres) > 0)
     coarse = _load(tmp_path, LIGHT + '<shape type="sphere"/>', sphere_subdivisions=1)
     assert len(coarse.meshes[1].triangles) == 80
+    # shaded by the sphere's own normals, transformed as normals (inverse transpose)
+    np.testing.assert_allclose(sphere.normals, (sphere.vertices - [1, 2, 3]) / 0.5, atol=1e-12)
+    squashed = _shape(
+        tmp_path,
+        '<shape type="sphere"><transform name="to_world"><scale y="0.5"/></transform></shape>',
+    )
+    v = squashed.vertices
+    expected = v * [1, 4, 1]  # gradient of x^2 + 4 y^2 + z^2
+    np.testing.assert_allclose(
+        squashed.normals, expected / np.linalg.norm(expected, axis=1, keepdims=True), atol=1e-9
+    )
 
 
 def test_xml_obj_and_ply_shapes(tmp_path: Path) -> None:
@@ -353,26 +364,56 @@ def test_xml_obj_and_ply_shapes(tmp_path: Path) -> None:
   <shape type="obj" id="room"><string name="filename" value="room.obj"/>
     <transform name="to_world"><translate y="1"/></transform></shape>"""
     )
-    with pytest.warns(UserWarning, match="'room.obj' is rendered with flat triangles"):
-        scene = _load(tmp_path, body)  # the OBJ is curved (non-coplanar faces share vertices)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene = _load(tmp_path, body)
     ball, room = scene.meshes[1], scene.meshes[2]
+    assert ball.normals is None  # face_normals
+    # The OBJ is curved (non-coplanar faces share vertices) and has no normals: as Mitsuba,
+    # smooth ones weighted by each face's angle at the vertex.
+    assert room.normals is not None
+    corner = room.vertices[room.triangles]
+    faces = _normals(room)
+    summed = np.zeros_like(room.vertices)
+    for t, tri in enumerate(room.triangles):
+        for k in range(3):
+            d0 = corner[t, (k + 1) % 3] - corner[t, k]
+            d1 = corner[t, (k + 2) % 3] - corner[t, k]
+            angle = np.arccos(d0 @ d1 / np.linalg.norm(d0) / np.linalg.norm(d1))
+            summed[tri[k]] += angle * faces[t]
+    used = np.unique(room.triangles)
+    expected = summed[used] / np.linalg.norm(summed[used], axis=1, keepdims=True)
+    np.testing.assert_allclose(room.normals[used], expected, atol=1e-12)
     np.testing.assert_allclose(ball.vertices, v.astype(np.float32), atol=1e-7)
     np.testing.assert_array_equal(ball.triangles, f)
     # Mitsuba ignores an OBJ's materials: one mesh, the default BSDF
     assert room.name == "room" and len(room.triangles) == 4
     assert room.material == dualight.Diffuse((0.5, 0.5, 0.5)) and not room.is_emitter
     assert room.vertices[:, 1].min() == 1.0
-    # Without face_normals Mitsuba would smooth a curved mesh: a warning says dualight won't
-    with pytest.warns(UserWarning) as record:
-        _load(tmp_path, body.replace('value="true"', 'value="false"'))
-    assert any("'ball.ply' is rendered with flat" in str(w.message) for w in record)
+    # Without face_normals the PLY sphere is smooth too: its normals lie within the facets'
+    # angle of the radial direction
+    smooth = _load(tmp_path, body.replace('value="true"', 'value="false"')).meshes[1]
+    radial = smooth.vertices / np.linalg.norm(smooth.vertices, axis=1, keepdims=True)
+    assert np.einsum("ij,ij->i", smooth.normals, radial).min() > np.cos(np.radians(3))
     flat = _obj(tmp_path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n", None, "flat")
-    with warnings.catch_warnings():  # a flat mesh without face_normals: no warning
-        warnings.simplefilter("error")
-        _load(
-            tmp_path,
-            LIGHT + f'<shape type="obj"><string name="filename" value="{flat.name}"/></shape>',
-        )
+    plane = _load(
+        tmp_path, LIGHT + f'<shape type="obj"><string name="filename" value="{flat.name}"/></shape>'
+    ).meshes[1]
+    assert plane.normals is None  # coplanar faces only: flat, however it is shaded
+    # The file's own normals (vn) are used, normalised, and flip_normals turns them round
+    bent = _obj(
+        tmp_path,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 2\nvn 0.1 0 1\nvn 0 0 1\nvn 0 0.1 1\n"
+        "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n",
+        None,
+        "bent",
+    )
+    shape = f'<shape type="obj"><string name="filename" value="{bent.name}"/>%s</shape>'
+    given = _load(tmp_path, LIGHT + shape % "").meshes[1]
+    np.testing.assert_allclose(given.normals[1], np.array([0.1, 0, 1]) / np.hypot(0.1, 1))
+    np.testing.assert_allclose(given.normals[0], [0, 0, 1])
+    flipped = _load(tmp_path, LIGHT + shape % '<boolean name="flip_normals" value="true"/>')
+    np.testing.assert_allclose(flipped.meshes[1].normals, -given.normals)
 
 
 def test_xml_bsdfs_and_emitters(tmp_path: Path) -> None:
@@ -713,6 +754,33 @@ def test_xml_glossy_materials_round_trip(tmp_path: Path) -> None:
             _load(tmp_path, bad + inner + "</bsdf></shape>")
     with pytest.warns(UserWarning, match="sample_visible=false is ignored"):
         _load(tmp_path, bad + '<boolean name="sample_visible" value="false"/></bsdf></shape>')
+
+
+def test_shading_normals_round_trip_and_reach_mitsuba(tmp_path: Path) -> None:
+    """A smooth mesh is written with its normals (face_normals false), read back with them, and
+    Mitsuba shades it with them (its shading normal at a hit is the interpolated one)."""
+    scene = scenes.cornell_box(variant="smooth", resolution=(16, 16))
+    path = dualight.save_mitsuba_xml(scene, tmp_path / "smooth.xml", spp=4)
+    back = {m.name: m for m in dualight.load_mitsuba_xml(path).meshes}
+    for mesh in scene.meshes:
+        again = back[f"mesh_{mesh.name}"]
+        if mesh.normals is None:
+            assert again.normals is None
+        else:
+            np.testing.assert_allclose(again.normals, mesh.normals, atol=1e-6)
+    mi = pytest.importorskip("mitsuba")
+    mi.set_variant("scalar_rgb")
+    sphere = scene.meshes[[m.name for m in scene.meshes].index("white_sphere")]
+    for loaded in (mi.load_file(str(path)), mi.load_dict(scene.to_mitsuba(spp=4))):
+        centre = sphere.vertices.mean(axis=0)
+        out = np.array([0.3, 0.5, -0.8]) / np.linalg.norm([0.3, 0.5, -0.8])
+        ray = mi.Ray3f(mi.Point3f(*(centre + 200.0 * out)), mi.Vector3f(*(-out + [0.02, 0, 0])))
+        si = loaded.ray_intersect(ray)
+        assert si.is_valid()
+        ns = np.array(si.sh_frame.n)
+        radial = np.array(si.p) - centre
+        assert ns @ radial / np.linalg.norm(radial) > 1 - 1e-4  # smooth: the sphere's normal
+        assert np.array(si.n) @ ns < 1 - 1e-6  # not the facet's
 
 
 def test_save_and_load_back(tmp_path: Path) -> None:

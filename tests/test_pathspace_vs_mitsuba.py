@@ -98,6 +98,17 @@ CASES = {
         {"path": 512, "light": 512, "bdpt": 128},
         {"path": LARGE_BLOCKS, "light": BLOCKS, "bdpt": LARGE_BLOCKS},
     ),
+    # Issue 19's shading normals: coarse spheres (320 triangles) shaded by their vertex
+    # normals, a white one and a glass one. The light tracer and BDPT agree with the path
+    # tracer only through the adjoint correction of importance transport; the control renders
+    # the same triangles flat.
+    "smooth": Case(
+        "smooth_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="smooth", **kw),
+        {"sphere_normals": False},
+        {"path": 1024, "light": 1024, "bdpt": 256},
+        {"path": LARGE_BLOCKS, "bdpt": LARGE_BLOCKS},
+    ),
 }
 RUNS = [(name, method) for name, case in sorted(CASES.items()) for method in case.spp]
 

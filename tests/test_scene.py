@@ -32,6 +32,11 @@ QUAD_F = np.array([[0, 1, 2, 3]])
         (QUAD_V, QUAD_F, {"emission": (1.0, -1.0, 1.0)}, ">= 0"),
         (QUAD_V, QUAD_F, {"emission": (1.0, np.inf, 1.0)}, "finite"),
         (QUAD_V * 1e31, QUAD_F, {}, "1e12"),
+        (QUAD_V, QUAD_F, {"normals": np.ones((3, 3))}, r"shape \(4, 3\), one per vertex"),
+        (QUAD_V, QUAD_F, {"normals": np.zeros((4, 3))}, "normal 0 is .* finite and non-zero"),
+        (QUAD_V, QUAD_F, {"normals": np.full((4, 3), np.nan)}, "finite and non-zero"),
+        (QUAD_V, QUAD_F, {"normals": np.full((4, 3), 1e300)}, "finite and non-zero"),
+        (QUAD_V, QUAD_F, {"normals": np.full((4, 3), "a")}, "real numbers"),
     ],
 )
 def test_add_mesh_rejects_bad_input(vertices, faces, kwargs, message) -> None:
@@ -345,3 +350,14 @@ def test_camera_resolution_must_be_a_pair() -> None:
         dualight.Camera(resolution=(True, 8))  # a bool is not a pixel count
     cam = dualight.Camera(resolution=(np.int64(32), np.int32(16)))
     assert cam.resolution == (32, 16) and type(cam.resolution[0]) is int
+
+
+def test_shading_normals_are_unit_read_only_and_optional() -> None:
+    scene = dualight.Scene()
+    scene.add_mesh(QUAD_V, QUAD_F)
+    assert scene.meshes[0].normals is None
+    scene.add_mesh(QUAD_V, QUAD_F, normals=[[0, 0, 2], [0, 1, 1], [0, 0, 1], [1, 0, 1]])
+    n = scene.meshes[1].normals
+    np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0)
+    np.testing.assert_allclose(n[1], [0, 2**-0.5, 2**-0.5])
+    assert not n.flags.writeable

@@ -11,9 +11,9 @@ class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
     """
-    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None) -> None:
+    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None) -> None:
         """
-        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance.
+        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals.
         """
     def encloses(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> bool:
         """

@@ -181,20 +181,25 @@ def _bsdf(material: Material, name: str) -> dict[str, Any]:
 
 
 def _mesh(mesh: Any, key: str) -> Any:
-    """A ``mitsuba.Mesh`` with face normals, its material's BSDF and maybe an emitter."""
+    """A ``mitsuba.Mesh`` (flat, or with the mesh's shading normals), its material's BSDF and
+    maybe an emitter."""
     import mitsuba as mi
 
+    smooth = mesh.normals is not None
     props = mi.Properties("mesh")
-    props["face_normals"] = True
+    props["face_normals"] = not smooth
     props["bsdf"] = mi.load_dict(_bsdf(mesh.material, mesh.name))
     if mesh.is_emitter:
         props["emitter"] = mi.load_dict({"type": "area", "radiance": _rgb(mesh.emission)})
-    out = mi.Mesh(key, len(mesh.vertices), len(mesh.triangles), props)
+    out = mi.Mesh(key, len(mesh.vertices), len(mesh.triangles), props, has_vertex_normals=smooth)
     params = mi.traverse(out)
     positions = np.ascontiguousarray(mesh.vertices, dtype=np.float32).ravel()
     faces = np.ascontiguousarray(mesh.triangles, dtype=np.uint32).ravel()
     params["vertex_positions"] = type(params["vertex_positions"])(positions)
     params["faces"] = type(params["faces"])(faces)
+    if smooth:
+        normals = np.ascontiguousarray(mesh.normals, dtype=np.float32).ravel()
+        params["vertex_normals"] = type(params["vertex_normals"])(normals)
     params.update()
     return out
 

@@ -21,6 +21,7 @@ import numpy as np
 from dualight.materials import (
     Conductor,
     Dielectric,
+    Diffuse,
     Material,
     Mirror,
     Plastic,
@@ -113,7 +114,9 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
 CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
 CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
 _CORNELL_SPHERE_SUBDIVISIONS = 5
-CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated")
+CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated", "smooth")
+# The "smooth" variant's spheres: coarse (320 triangles) so that shading normals matter.
+_CORNELL_SMOOTH_SUBDIVISIONS = 2
 
 
 def cornell_box(
@@ -124,6 +127,7 @@ def cornell_box(
     variant: str = "classic",
     ior: float = 1.5,
     roughness_scale: float = 1.0,
+    sphere_normals: bool = True,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
@@ -137,7 +141,7 @@ def cornell_box(
         Multiplies every wall's and block's reflectance (and the mirror's), finite, ``>= 0``
         and small enough that every reflectance stays ``<= 1``. Tests use both scales as
         negative controls.
-    variant : {"classic", "caustics"}, optional
+    variant : {"classic", "caustics", "glossy", "coated", "smooth"}, optional
         ``"classic"``: the measured box with its two white blocks. ``"caustics"``: the same
         room and light with the blocks replaced by two spheres resting on the floor (flat
         :func:`icosphere` triangles, 5 subdivisions: 20,480 each), as in the classic caustic
@@ -157,21 +161,28 @@ def cornell_box(
         ``thindielectric`` and ``plastic``: ``copper_sphere`` (a
         :class:`~dualight.Conductor` of Mitsuba's copper), ``bubble`` (a
         :class:`~dualight.ThinDielectric` of index ``ior``) and a :class:`~dualight.Plastic`
-        floor (the white base, coat of index ``ior``).
+        floor (the white base, coat of index ``ior``). ``"smooth"``: the caustic scene with
+        coarse spheres (2 subdivisions, 320 triangles each) shaded smoothly by their vertex
+        normals (``add_mesh(..., normals=...)``): ``white_sphere`` (a
+        :class:`~dualight.Diffuse` of the walls' white) and ``glass_sphere`` (a
+        :class:`~dualight.Dielectric` of index ``ior``).
     ior : float, optional
         The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
         the material accepts).
     roughness_scale : float, optional
         Multiplies every roughness of the ``"glossy"`` variant (a negative control), in
         ``(0, 4]``.
+    sphere_normals : bool, optional
+        Whether the ``"smooth"`` variant's spheres carry their vertex normals; ``False``
+        renders the same triangles flat (a negative control).
 
     Returns
     -------
     Scene
         Meshes ``floor``, ``ceiling``, ``back_wall``, ``green_wall``, ``red_wall``, then
         ``short_block`` and ``tall_block`` (classic), ``mirror_sphere`` and ``glass_sphere``
-        (caustics), ``gold_sphere`` and ``frosted_sphere`` (glossy) or ``copper_sphere`` and
-        ``bubble`` (coated), then ``light``.
+        (caustics), ``gold_sphere`` and ``frosted_sphere`` (glossy), ``copper_sphere`` and
+        ``bubble`` (coated) or ``white_sphere`` and ``glass_sphere`` (smooth), then ``light``.
 
     Raises
     ------
@@ -205,6 +216,10 @@ def cornell_box(
     elif variant == "coated":
         sphere_materials = (Conductor(material="Cu"), ThinDielectric(ior=ior))
         sphere_names = ("copper_sphere", "bubble")
+    elif variant == "smooth":
+        white = tuple(reflectance_scale * c for c in CORNELL_WHITE)
+        sphere_materials = (Diffuse(white), Dielectric(ior=ior))
+        sphere_names = ("white_sphere", "glass_sphere")
     elif spheres:
         sphere_materials = (Mirror((reflectance_scale,) * 3), Dielectric(ior=ior))
         sphere_names = ("mirror_sphere", "glass_sphere")
@@ -250,6 +265,11 @@ def cornell_box(
             sphere_materials,
             strict=True,
         ):
+            if variant == "smooth":
+                v, f = icosphere(centre, radius, _CORNELL_SMOOTH_SUBDIVISIONS)
+                normals = v - np.asarray(centre) if sphere_normals else None
+                scene.add_mesh(v, f, material=material, name=name, normals=normals)
+                continue
             v, f = icosphere(centre, radius, _CORNELL_SPHERE_SUBDIVISIONS)
             scene.add_mesh(v, f, material=material, name=name)
     light = _orient(np.array(_CORNELL_LIGHT), _CORNELL_ROOM_CENTRE, inward=True)
@@ -625,8 +645,9 @@ def icosphere(
     r^2``: by 24 %, 7.2 %, 1.9 %, 0.48 % and 0.12 % at 0 to 4 subdivisions (a
     factor of about 4 per subdivision).
 
-    dualight has no shading normals, so the sphere renders faceted; Mitsuba gets the same flat
-    triangles (``face_normals=True`` in :mod:`dualight.mitsuba`).
+    The sphere renders faceted (Mitsuba gets the same flat triangles, ``face_normals=True`` in
+    :mod:`dualight.mitsuba`) unless it is added with shading normals:
+    ``scene.add_mesh(v, f, normals=v - centre)``.
 
     Parameters
     ----------

@@ -26,8 +26,11 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                                   const IndexArray& material_of, const FloatArray& reflectance,
                                   const FloatArray& emission, const std::optional<IndexArray>& kind,
                                   const std::optional<FloatArray>& ior,
-                                  const std::optional<std::vector<BsdfObject>>& bsdfs) {
+                                  const std::optional<std::vector<BsdfObject>>& bsdfs,
+                                  const std::optional<FloatArray>& normals) {
   std::vector<float> p = rows_of(positions, 3, "positions");
+  std::vector<float> ns = normals ? rows_of(*normals, 3, "normals") : std::vector<float>{};
+  if (normals && ns.size() != p.size()) throw py::value_error("normals needs one row per position");
   std::vector<uint32_t> t = rows_of(triangles, 3, "triangles");
   if (material_of.ndim() != 1) throw py::value_error("material_of must be one-dimensional");
   std::vector<uint32_t> m(material_of.data(), material_of.data() + material_of.size());
@@ -54,7 +57,8 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
   py::gil_scoped_release release;  // the BVH build can take a while on large meshes
-  return std::make_shared<Scene>(std::move(p), std::move(t), std::move(m), std::move(materials));
+  return std::make_shared<Scene>(std::move(p), std::move(t), std::move(m), std::move(materials),
+                                 std::vector<Emitter>{}, std::move(ns));
 }
 
 }  // namespace
@@ -64,11 +68,12 @@ void bind_geometry(py::module_& m) {
                                             "Immutable triangle scene committed to Embree (built by dualight.Scene).")
       .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
            py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
-           py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(),
+           py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(), py::arg("normals") = py::none(),
            "Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one "
            "dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a "
            "dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse "
-           "albedo or the mirror's reflectance.")
+           "albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a "
+           "triangle is smooth-shaded when its three vertices have non-zero normals.")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly(

@@ -26,7 +26,7 @@ std::pair<Vec3, float> Scene::normal_and_double_area(uint32_t prim) const {
 }
 
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
-             std::vector<Material> materials, std::vector<Emitter> emitters)
+             std::vector<Material> materials, std::vector<Emitter> emitters, std::vector<float> normals)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
       material_of_(std::move(material_of)),
@@ -48,6 +48,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   for (const uint32_t m : material_of_) {
     if (m >= materials_.size()) throw std::invalid_argument("material index out of range");
   }
+  set_vertex_normals(normals);
 
   bounds_min_ = Vec3(std::numeric_limits<float>::infinity());
   bounds_max_ = -bounds_min_;
@@ -102,6 +103,32 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
 }
 
+void Scene::set_vertex_normals(const std::vector<float>& normals) {
+  if (normals.empty()) return;
+  if (normals.size() != positions_.size()) throw std::invalid_argument("normals must hold 3 values per vertex");
+  vertex_normal_.resize(normals.size() / 3);
+  for (size_t v = 0; v < vertex_normal_.size(); ++v) {
+    const Vec3 n(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+    const float len = length(n);
+    if (!std::isfinite(len)) throw std::invalid_argument("vertex normals must be finite");
+    vertex_normal_[v] = len > 0.f ? n / len : Vec3(0.f);
+  }
+  smooth_.resize(triangles_.size() / 3);
+  for (size_t prim = 0; prim < smooth_.size(); ++prim) {
+    bool all = true;
+    for (int k = 0; k < 3; ++k) all = all && !is_black(vertex_normal_[triangles_[3 * prim + k]]);
+    smooth_[prim] = all;
+  }
+}
+
+Vec3 Scene::shading_normal(uint32_t prim, float u, float v) const {
+  if (smooth_.empty() || !smooth_[prim]) return normal_[prim];
+  const uint32_t* t = &triangles_[3 * prim];
+  const Vec3 n = vertex_normal_[t[0]] * (1.f - u - v) + vertex_normal_[t[1]] * u + vertex_normal_[t[2]] * v;
+  const float len = length(n);
+  return len > 0.f ? n / len : normal_[prim];  // opposite normals cancelling: the face's own
+}
+
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RayHit rh = accel_->intersect(ray);
   if (!rh.hit()) return false;
@@ -119,6 +146,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   const uint32_t prim = rh.prim;
   hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;
   hit.n = normal_[prim];
+  hit.ns = shading_normal(prim, rh.u, rh.v);
   hit.t = rh.t;
   hit.prim = prim;
   hit.material = &materials_[material_of_[prim]];

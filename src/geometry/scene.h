@@ -25,6 +25,7 @@ struct Material {
 struct SurfaceHit {
   Vec3 p;          // position, from barycentrics (more accurate than o + t d)
   Vec3 n;          // unit geometric normal, right-hand rule on the triangle's vertex order
+  Vec3 ns;         // unit shading normal: the vertex normals interpolated, n on flat triangles
   float t = 0.f;
   uint32_t prim = 0;
   const Material* material = nullptr;
@@ -41,10 +42,13 @@ class Scene {
  public:
   // positions: xyz per vertex; triangles: 3 vertex indices each; material_of: index per triangle;
   // emitters: those not on the triangles (every emissive triangle is an AreaEmitter already),
-  // kept after the area emitters. Throws std::invalid_argument on any malformed input (the
-  // Python layer validates first, so these checks guard the C++ API itself).
+  // kept after the area emitters; normals: empty, or xyz per vertex, where a triangle whose three
+  // vertices all have non-zero normals is smooth-shaded (its shading normal interpolates them,
+  // Phong's normal interpolation) and any zero normal keeps the triangle flat. Throws
+  // std::invalid_argument on any malformed input (the Python layer validates first, so these
+  // checks guard the C++ API itself).
   Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
-        std::vector<Material> materials, std::vector<Emitter> emitters = {});
+        std::vector<Material> materials, std::vector<Emitter> emitters = {}, std::vector<float> normals = {});
 
   size_t triangle_count() const { return area_.size(); }
   Vec3 vertex(uint32_t prim, int corner) const {
@@ -52,6 +56,9 @@ class Scene {
     return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
   }
   Vec3 normal(uint32_t prim) const { return normal_[prim]; }
+  // The shading normal at barycentrics (u, v) of vertices 1 and 2: the geometric normal on flat
+  // triangles.
+  Vec3 shading_normal(uint32_t prim, float u, float v) const;
   float area(uint32_t prim) const { return area_[prim]; }
   const Material& material(uint32_t prim) const { return materials_[material_of_[prim]]; }
   size_t emitter_count() const { return emitters_.size(); }
@@ -100,12 +107,15 @@ class Scene {
 
  private:
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
+  void set_vertex_normals(const std::vector<float>& normals);
 
   std::vector<float> positions_;
   std::vector<uint32_t> triangles_;
   std::vector<uint32_t> material_of_;
   std::vector<Material> materials_;
   std::vector<Vec3> normal_;
+  std::vector<Vec3> vertex_normal_;  // unit, per vertex; empty when every triangle is flat
+  std::vector<uint8_t> smooth_;      // per triangle: 1 = interpolate vertex_normal_
   std::vector<float> area_;
   static constexpr uint32_t kNoEmitter = 0xffffffffu;
   std::vector<Emitter> emitters_;           // one AreaEmitter per emissive triangle, in triangle order

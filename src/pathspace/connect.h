@@ -43,6 +43,7 @@ inline Vertex camera_vertex(const PinholeCamera& camera) {
   c.type = VertexType::Camera;
   c.p = camera.origin();
   c.n = camera.forward();
+  c.ns = c.n;
   c.beta = Color(1.f);
   return c;
 }

@@ -8,12 +8,12 @@
 namespace dualight {
 
 DeltaLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light) {
-  const Frame frame = Frame::from_normal(v.n);
+  const Frame frame = shading_frame(v);
   return delta_lobe(v.material->bsdf, frame.to_local(to_eye), frame.to_local(to_light));
 }
 
 bool specular_direction(const Vertex& v, const Vec3& wo, bool refraction, Vec3& wi) {
-  const Frame frame = Frame::from_normal(v.n);
+  const Frame frame = shading_frame(v);
   const Vec3 w = frame.to_local(wo);
   if (w.z == 0.f) return false;
   Vec3 local;
@@ -37,8 +37,9 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
     if (is_specular(z[i])) {
       fs = specular_lobe(z[i], to_eye, to_light).coef;
     } else {
-      const Frame frame = Frame::from_normal(z[i].n);
-      fs = eval_f(z[i].material->bsdf, frame.to_local(to_eye), frame.to_local(to_light), TransportMode::Radiance);
+      const Frame frame = shading_frame(z[i]);
+      fs = eval_f(z[i].material->bsdf, frame.to_local(to_eye), frame.to_local(to_light), TransportMode::Radiance) *
+           shading_ratio(z[i].n, z[i].ns, to_light);
     }
     for (int c = 0; c < 3; ++c) f[c] *= fs[c];
   }
@@ -62,7 +63,7 @@ double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced) 
     const DeltaLobe lobe = specular_lobe(v, w, to_light);
     return (forced ? 1.0 : lobe.prob) * lobe.importance_ratio * geometry_term(v, z[i]);
   }
-  const Frame frame = Frame::from_normal(v.n);
+  const Frame frame = shading_frame(v);
   return solid_angle_to_area(
       pdf_w(v.material->bsdf, frame.to_local(to_light), frame.to_local(w), TransportMode::Importance), v, z[i]);
 }
@@ -78,7 +79,7 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
     const DeltaLobe lobe = specular_lobe(v, to_eye, w);
     return (forced ? 1.0 : lobe.prob) * geometry_term(v, z[i]);
   }
-  const Frame frame = Frame::from_normal(v.n);
+  const Frame frame = shading_frame(v);
   return solid_angle_to_area(
       pdf_w(v.material->bsdf, frame.to_local(to_eye), frame.to_local(w), TransportMode::Radiance), v, z[i]);
 }
@@ -91,19 +92,12 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
   SurfaceHit h;
   ++counters.rays;
   if (!scene.intersect(ray, h)) return false;
-  hit = Vertex{};
-  hit.type = VertexType::Surface;
-  hit.p = h.p;
-  hit.n = h.n;
-  hit.wo = -d;
-  hit.prim = h.prim;
-  hit.material = h.material;
-  hit.emitter = h.emitter;
+  hit = surface_vertex(h, d);
   return true;
 }
 
 bool sample_scatter(const Vertex& v, const Vec3& wo, TransportMode mode, Point2 u, Vec3& wi) {
-  const Frame frame = Frame::from_normal(v.n);
+  const Frame frame = shading_frame(v);
   BsdfSample bs;
   if (!sample(v.material->bsdf, frame.to_local(wo), u, mode, bs)) return false;
   wi = frame.to_world(bs.wi);

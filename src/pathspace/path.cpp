@@ -7,8 +7,10 @@
 namespace dualight {
 
 Color scattering(const Vertex& v, const Vec3& next, TransportMode mode) {
-  const Frame frame = Frame::from_normal(v.n);
-  return eval_f(v.material->bsdf, frame.to_local(v.wo), frame.to_local(normalize(next - v.p)), mode);
+  const Frame frame = shading_frame(v);
+  const Vec3 wi = normalize(next - v.p);
+  const Color f = eval_f(v.material->bsdf, frame.to_local(v.wo), frame.to_local(wi), mode);
+  return f * shading_ratio(v.n, v.ns, mode == TransportMode::Radiance ? wi : v.wo);
 }
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next) {
@@ -22,7 +24,7 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
       pdf_w = emission_pdf_w(v, w);
       break;
     case VertexType::Surface: {
-      const Frame frame = Frame::from_normal(v.n);
+      const Frame frame = shading_frame(v);
       const Vec3 wo = frame.to_local(normalize(prev->p - v.p));
       pdf_w = dualight::pdf_w(v.material->bsdf, wo, frame.to_local(w), TransportMode::Radiance);
       break;
@@ -56,7 +58,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       case VertexType::Surface:
         break;
     }
-    const Frame frame = Frame::from_normal(u.n);
+    const Frame frame = shading_frame(u);
     return dualight::pdf_w(u.material->bsdf, frame.to_local(u.wo), frame.to_local(w), mode);
   };
   const auto record = [&](float& worst, float cached, float recomputed) {
@@ -77,7 +79,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       const Vertex& after = path[i + 2];
       float pdf = 0.f;
       if (!next.delta) {
-        const Frame frame = Frame::from_normal(next.n);
+        const Frame frame = shading_frame(next);
         pdf = dualight::pdf_w(next.material->bsdf, frame.to_local(-after.wo), frame.to_local(next.wo), mode);
       }
       record(check.pdf_rev, v.pdf_rev, solid_angle_to_area(pdf, next, v));
@@ -89,9 +91,10 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       factor = emitted_towards(prev, v.p) * ((prev.on_surface() ? dot(prev.n, w) : 1.f) / pdf_w_at(prev, w));
     } else if (prev.type == VertexType::Surface) {
       if (prev.delta) continue;  // the discrete lobe's weight is not a density ratio
-      const Frame frame = Frame::from_normal(prev.n);
+      const Frame frame = shading_frame(prev);
       const Vec3 wo = frame.to_local(prev.wo), wi = frame.to_local(w);
-      factor = eval_f(prev.material->bsdf, wo, wi, mode) * (std::abs(wi.z) / pdf_w_at(prev, w));
+      factor = eval_f(prev.material->bsdf, wo, wi, mode) *
+               (std::abs(wi.z) * walk_weight_correction(prev.n, prev.ns, prev.wo, w, mode) / pdf_w_at(prev, w));
     }
     const Color beta = prev.beta * factor;
     for (int c = 0; c < 3; ++c) {

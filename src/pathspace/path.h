@@ -13,8 +13,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/frame.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "materials/shading_normal.h"
 
 namespace dualight {
 
@@ -24,6 +26,7 @@ struct Vertex {
   VertexType type = VertexType::Surface;
   Vec3 p;                  // position
   Vec3 n;                  // geometric normal; the view direction at the camera
+  Vec3 ns;                 // shading normal, the BSDF's frame (materials/shading_normal.h); n if flat
   Vec3 wo;                 // unit direction to the previous vertex of the subpath (0 at its start)
   uint32_t prim = 0;
   const Material* material = nullptr;
@@ -54,6 +57,23 @@ struct Vertex {
 
 using Path = std::vector<Vertex>;
 
+// The surface vertex a ray along direction d found at `hit` (densities and beta left to the caller).
+inline Vertex surface_vertex(const SurfaceHit& hit, const Vec3& d) {
+  Vertex v;
+  v.type = VertexType::Surface;
+  v.p = hit.p;
+  v.n = hit.n;
+  v.ns = hit.ns;
+  v.wo = -d;
+  v.prim = hit.prim;
+  v.material = hit.material;
+  v.emitter = hit.emitter;
+  return v;
+}
+
+// The frame v's BSDF is evaluated in.
+inline Frame shading_frame(const Vertex& v) { return Frame::from_normal(v.ns); }
+
 // The start of a light subpath (or the emitter end of a connection): a point on an emitter
 // the scene chose by power (u_select), sampled by the emitter (u).
 inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
@@ -63,6 +83,7 @@ inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
   v.type = VertexType::Light;
   v.p = y.p;
   v.n = y.n;
+  v.ns = y.n;
   v.prim = y.prim;
   v.material = y.on_surface ? &scene.material(v.prim) : nullptr;
   v.emitter = choice.emitter;

@@ -2,6 +2,7 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "materials/shading_normal.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/shadow_ray.h"
 
@@ -69,10 +70,10 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     if (hit.emitter != nullptr) L += emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta);
     if (!depth_allows(depth + 1)) break;
 
-    // The frame keeps the geometric normal (it tells a dielectric's inside from its outside);
-    // two-sided BSDFs handle wo.z < 0 themselves.
-    const Vec3 ns = hit.n;
-    const Frame frame = Frame::from_normal(ns);
+    // The BSDF's frame is the shading normal's (it tells a dielectric's inside from its
+    // outside); two-sided BSDFs handle wo.z < 0 themselves. Radiance transport needs no
+    // correction for shading normals (materials/shading_normal.h).
+    const Frame frame = Frame::from_normal(hit.ns);
     const Vec3 wo = frame.to_local(wo_world);
     const Bsdf& bsdf = hit.material->bsdf;
 
@@ -90,7 +91,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     prev_pdf_w = bs.pdf_w;
     prev_delta = bs.delta;
     const Vec3 wi_world = frame.to_world(bs.wi);
-    ray = Ray{scene.spawn_origin(hit.p, bs.wi.z > 0.f ? ns : -ns), wi_world};
+    ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n), wi_world};
 
     if (depth >= opt.rr_depth) {
       const float q = std::min(max_component(beta), 0.95f);

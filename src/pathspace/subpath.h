@@ -35,21 +35,14 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     SurfaceHit hit;
     ++counters.rays;
     if (!scene.intersect(ray, hit)) return;
-    Vertex v;
-    v.type = VertexType::Surface;
-    v.p = hit.p;
-    v.n = hit.n;
-    v.wo = -ray.d;
-    v.prim = hit.prim;
-    v.material = hit.material;
-    v.emitter = hit.emitter;
+    Vertex v = surface_vertex(hit, ray.d);
     v.beta = beta;
     v.pdf_fwd = solid_angle_to_area(pdf_w, path.back(), v);
     path.push_back(v);
     if (added + 1 == max_new) return;
 
     Vertex& cur = path.back();
-    const Frame frame = Frame::from_normal(cur.n);
+    const Frame frame = shading_frame(cur);
     const Vec3 wo = frame.to_local(cur.wo);
     BsdfSample bs;
     if (!sample(cur.material->bsdf, wo, sampler.next_2d(), mode, bs)) return;
@@ -61,8 +54,10 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
       pdf_w = bs.pdf_w;
       pdf_rev_w = dualight::pdf_w(cur.material->bsdf, bs.wi, wo, mode);
     }
-    beta *= bs.weight;
-    throughput *= bs.weight;
+    const Vec3 wi = frame.to_world(bs.wi);
+    const Color weight = bs.weight * walk_weight_correction(cur.n, cur.ns, cur.wo, wi, mode);
+    beta *= weight;
+    throughput *= weight;
     Vertex& prev = path[path.size() - 2];
     prev.pdf_rev = solid_angle_to_area(pdf_rev_w, cur, prev);
 
@@ -72,7 +67,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
       beta /= q;
       throughput /= q;
     }
-    ray = Ray{scene.spawn_origin(cur.p, bs.wi.z > 0.f ? cur.n : -cur.n), frame.to_world(bs.wi)};
+    ray = Ray{scene.spawn_origin(cur.p, leaves_front(cur.n, cur.ns, wi, bs.wi.z) ? cur.n : -cur.n), wi};
   }
 }
 
@@ -93,6 +88,7 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
   c.type = VertexType::Camera;
   c.p = ray.o;
   c.n = camera.forward();
+  c.ns = c.n;
   c.beta = Color(1.f);  // We / pdf = 1: camera rays sample importance exactly
   path.push_back(c);
   const size_t max_new = subpath_detail::max_vertices(limits.max_depth, 1) - 1;

@@ -36,6 +36,8 @@ The references (see README.md beside them for how long they took):
 * ``coated_64``: ``cornell_box(resolution=(64, 64), variant="coated")`` (a smooth copper
   sphere, a thin-glass bubble, a smooth-plastic floor: ``conductor``, ``thindielectric``,
   ``plastic``), ``max_depth=8``, ``rr_depth=5``.
+* ``smooth_64``: ``cornell_box(resolution=(64, 64), variant="smooth")`` (coarse white and
+  glass spheres shaded by their vertex normals), ``max_depth=8``, ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -115,6 +117,13 @@ def _references() -> dict[str, Reference]:
             "coated_64",
             'cornell_box(resolution=(64, 64), variant="coated")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="coated"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "smooth_64",
+            'cornell_box(resolution=(64, 64), variant="smooth")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="smooth"),
             spp=131072,
             max_depth=8,
         ),

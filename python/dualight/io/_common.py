@@ -109,3 +109,41 @@ def _mesh_arrays(geom: Any, where: str) -> tuple[np.ndarray, np.ndarray]:
     if f.size and (f.min() < 0 or f.max() >= len(v)):
         raise ValueError(f"{where}: a face index is out of range for {len(v)} vertices")
     return v, f
+
+
+def _loaded_normals(geom: Any) -> np.ndarray | None:
+    """The vertex normals an OBJ/PLY file gave (``vn``, ``nx ny nz``), or None: trimesh
+    computes normals on request, so only those it holds from loading are taken."""
+    if "vertex_normals" not in geom._cache:
+        return None
+    n = np.asarray(geom._cache["vertex_normals"], dtype=np.float64)
+    if n.shape != (len(geom.vertices), 3):
+        return None
+    length = np.linalg.norm(n, axis=1)
+    return n if np.all(np.isfinite(length) & (length > 0.0)) else None
+
+
+def _angle_weighted_normals(v: np.ndarray, f: np.ndarray) -> np.ndarray | None:
+    """Smooth vertex normals as Mitsuba 3 computes them for meshes without any: each face's unit
+    normal weighted by its angle at the vertex [Thuermer and Wuethrich 1998]. None where they
+    equal the face normals everywhere (every vertex shared only by coplanar triangles), so flat
+    meshes stay flat."""
+    e = [v[f[:, (k + 1) % 3]] - v[f[:, k]] for k in range(3)]
+    n = np.cross(e[0], -e[2])
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    n = n / np.where(length > 0, length, 1.0)
+    summed = np.zeros_like(v)
+    for k in range(3):
+        d0, d1 = e[k], -e[(k + 2) % 3]
+        l0 = np.linalg.norm(d0, axis=1)
+        l1 = np.linalg.norm(d1, axis=1)
+        cos = np.einsum("ij,ij->i", d0, d1) / np.maximum(l0 * l1, 1e-300)
+        np.add.at(summed, f[:, k], n * np.arccos(np.clip(cos, -1.0, 1.0))[:, None])
+    length = np.linalg.norm(summed, axis=1, keepdims=True)
+    vn = summed / np.where(length > 0, length, 1.0)
+    if not np.any(np.einsum("tkj,tj->tk", vn[f], n) < 1.0 - 1e-6):
+        return None
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    vn[~used | (length[:, 0] == 0)] = (0.0, 0.0, 1.0)  # unused vertices need some valid normal
+    return vn

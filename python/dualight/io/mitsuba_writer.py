@@ -64,8 +64,8 @@ def save_mitsuba_xml(
     The file describes the same scene as :func:`dualight.mitsuba.scene_dict` (path tracer
     with ``max_depth``, ``rr_depth`` and visible emitters; perspective sensor with the fov
     along x and ``look_at``; ``hdrfilm`` with a box filter; independent sampler with ``spp``;
-    each mesh a ``ply`` shape with ``face_normals``, its material's BSDF and maybe an area
-    emitter), so ``mitsuba.load_file(path)`` renders what
+    each mesh a ``ply`` shape with ``face_normals``, or with its shading normals, its
+    material's BSDF and maybe an area emitter), so ``mitsuba.load_file(path)`` renders what
     ``mitsuba.load_dict(scene.to_mitsuba(...))`` renders. The meshes go to the folder
     ``<stem>_meshes`` next to the XML file (created or overwritten), one ``<name>.ply`` each,
     with float32 vertices (as both renderers use them). :func:`load_mitsuba_xml` reads the file
@@ -152,13 +152,18 @@ def save_mitsuba_xml(
     for mesh in scene.meshes:
         key = _key(mesh.name, used)
         ply = mesh_dir / f"{key}.ply"
+        smooth = mesh.normals is not None
         tm = trimesh.Trimesh(
-            mesh.vertices.astype(np.float32), mesh.triangles, process=False, validate=False
+            mesh.vertices.astype(np.float32),
+            mesh.triangles,
+            vertex_normals=mesh.normals if smooth else None,
+            process=False,
+            validate=False,
         )
-        tm.export(str(ply), file_type="ply", encoding="binary")
+        tm.export(str(ply), file_type="ply", encoding="binary", vertex_normal=smooth)
         shape = _element(root, "shape", type="ply", id=key)
         _element(shape, "string", name="filename", value=f"{mesh_dir.name}/{ply.name}")
-        _element(shape, "boolean", name="face_normals", value="true")
+        _element(shape, "boolean", name="face_normals", value="false" if smooth else "true")
         _write_bsdf(shape, mesh.material)
         if mesh.is_emitter:
             emitter = _element(shape, "emitter", type="area")

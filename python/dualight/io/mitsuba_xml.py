@@ -14,7 +14,15 @@ from typing import Any
 
 import numpy as np
 
-from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
+from dualight.io._common import (
+    RGB,
+    PathLike,
+    _angle_weighted_normals,
+    _existing_file,
+    _loaded_normals,
+    _mesh_arrays,
+    _trimesh_geometries,
+)
 from dualight.materials import (
     Conductor,
     Dielectric,
@@ -512,43 +520,28 @@ def _cube() -> tuple[np.ndarray, np.ndarray]:
     return np.array(verts), np.array(faces)
 
 
-def _smooth_differs(v: np.ndarray, f: np.ndarray) -> bool:
-    """Whether interpolated vertex normals would differ from the face normals somewhere (some
-    vertex is shared by triangles that are not coplanar)."""
-    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    length = np.linalg.norm(n, axis=1, keepdims=True)
-    n = n / np.where(length > 0, length, 1.0)
-    summed = np.zeros_like(v)
-    for k in range(3):
-        np.add.at(summed, f[:, k], n)
-    length = np.linalg.norm(summed, axis=1, keepdims=True)
-    vn = summed / np.where(length > 0, length, 1.0)
-    dots = np.einsum("tkj,tj->tk", vn[f], n)
-    return bool(np.any(dots < 1.0 - 1e-6))
-
-
 def _file_mesh(
     ctx: _Context, element: ET.Element, kind: str, filename: str, face_normals: bool
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Vertices, faces and shading normals (None: flat) of an OBJ/PLY shape. As in Mitsuba,
+    without ``face_normals`` the file's vertex normals are used, or smooth ones are computed."""
     path = ctx.folder / filename
     if not path.is_file():
         raise FileNotFoundError(
             f"no such {kind.upper()} file: {str(path)!r} (named by <shape type={kind!r}> in "
             f"{str(ctx.path)!r})"
         )
-    parts = [_mesh_arrays(g, str(path)) for _, g in _trimesh_geometries(path, kind)]
+    geoms = [g for _, g in _trimesh_geometries(path, kind)]
+    parts = [_mesh_arrays(g, str(path)) for g in geoms]
     offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
     v = np.concatenate([p[0] for p in parts])
     f = np.concatenate([p[1] + off for p, off in zip(parts, offsets, strict=True)])
-    if not face_normals and _smooth_differs(v, f):
-        warnings.warn(
-            f"{str(ctx.path)!r}: <shape type={kind!r}> {filename!r} is rendered with flat "
-            "triangles; Mitsuba interpolates vertex normals unless <boolean "
-            'name="face_normals" value="true"/> (images differ on curved parts)',
-            UserWarning,
-            stacklevel=5,
-        )
-    return v, f
+    if face_normals:
+        return v, f, None
+    loaded = [_loaded_normals(g) for g in geoms]
+    if all(n is not None for n in loaded):
+        return v, f, np.concatenate(loaded)  # type: ignore[arg-type]
+    return v, f, _angle_weighted_normals(v, f)
 
 
 _SHAPE_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
@@ -612,12 +605,13 @@ def _shape(
             raise ctx.error(child, f"<{child.tag}> inside a shape is not supported")
 
     to_world = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
+    normals: np.ndarray | None = None
     if kind in ("obj", "ply"):
         if "filename" not in props:
             raise ctx.error(element, f'a {kind} shape needs <string name="filename">')
         filename = ctx.attr(props["filename"], "value")
         face_normals = _boolean(ctx, props.get("face_normals"), False)
-        v, f = _file_mesh(ctx, element, kind, filename, face_normals)
+        v, f, normals = _file_mesh(ctx, element, kind, filename, face_normals)
         label = Path(filename).stem
     elif kind == "rectangle":
         (v, f), label = _rectangle(), "rectangle"
@@ -629,19 +623,31 @@ def _shape(
         if radius <= 0.0:
             raise ctx.error(props["radius"], f"sphere radius must be > 0, got {radius}")
         v, f = icosphere(centre, radius, sphere_subdivisions)
+        normals = v - centre  # the sphere's own normals: smooth, as Mitsuba's analytic sphere
         label = "sphere"
     v = _apply(to_world, v)
+    if normals is not None:  # normals transform by the inverse transpose
+        normals = normals @ np.linalg.inv(to_world[:3, :3])
     if kind in ("rectangle", "cube") and np.linalg.det(to_world[:3, :3]) < 0.0:
         # Mitsuba transforms these shapes' normals as normals, so a mirroring transform keeps
         # their front side; meshes and spheres take the transformed triangles' orientation.
         f = f[:, ::-1]
     if _boolean(ctx, props.get("flip_normals"), False):
         f = f[:, ::-1]
+        normals = None if normals is None else -normals
     name = element.get("id") or f"{label}{index}"
     if material is None:  # Mitsuba's default BSDF: diffuse 0.5, black on emitters
         material = Diffuse((0.0,) * 3 if any(e > 0.0 for e in emission) else (0.5,) * 3)
     try:
-        scene.add_mesh(v, f, emission=emission, material=material, name=name, degenerate="drop")
+        scene.add_mesh(
+            v,
+            f,
+            emission=emission,
+            material=material,
+            name=name,
+            degenerate="drop",
+            normals=normals,
+        )
     except ValueError as exc:
         raise ctx.error(element, str(exc)) from None
 
@@ -883,9 +889,11 @@ def load_mitsuba_xml(
 
     Approximations, each with a ``UserWarning``: ``sample_visible=false`` on a rough BSDF is
     ignored (dualight samples visible normals: the same BSDF, other noise); a pixel filter
-    other than ``box`` (Mitsuba's default is a Gaussian) is replaced by dualight's box filter;
-    ``obj``/``ply`` meshes without ``face_normals`` render flat where Mitsuba would interpolate
-    vertex normals. Without a warning: dualight's ``diffuse`` is two-sided, so a one-sided
+    other than ``box`` (Mitsuba's default is a Gaussian) is replaced by dualight's box filter.
+    As in Mitsuba, ``obj``/``ply`` meshes without ``face_normals`` are shaded smoothly, by the
+    file's vertex normals or by normals computed as Mitsuba does (each face's normal weighted
+    by its angle at the vertex); a ``sphere`` is an icosphere shaded by the sphere's own
+    normals. Without a warning: dualight's ``diffuse`` is two-sided, so a one-sided
     Mitsuba ``diffuse`` differs only where light reaches the back of a surface (conductors and
     plastics are one-sided unless in ``twosided``, as in Mitsuba); a shape without a BSDF gets
     Mitsuba's default: diffuse 0.5, or black if it emits.

@@ -9,7 +9,14 @@ from typing import Any
 
 import numpy as np
 
-from dualight.io._common import RGB, PathLike, _existing_file, _mesh_arrays, _trimesh_geometries
+from dualight.io._common import (
+    RGB,
+    PathLike,
+    _existing_file,
+    _loaded_normals,
+    _mesh_arrays,
+    _trimesh_geometries,
+)
 from dualight.materials import Diffuse, Material, RoughConductor, RoughPlastic
 from dualight.scene import Scene
 
@@ -143,6 +150,7 @@ def load_obj(
     scene: Scene | None = None,
     default_reflectance: RGB = (0.5, 0.5, 0.5),
     emission_scale: float = 1.0,
+    face_normals: bool = False,
 ) -> Scene:
     """Load a Wavefront OBJ file and its MTL materials into a scene.
 
@@ -156,8 +164,9 @@ def load_obj(
     with a ``UserWarning`` that it is approximate. Faces without a material get
     ``default_reflectance`` and no emission. MTL statements dualight does not model (textures
     such as ``map_Kd``, transparency ``d``/``Tr``, ``Ni``) are ignored with a
-    ``UserWarning``; normals and texture coordinates are not used (dualight renders flat
-    triangles). Zero-area triangles are dropped with a warning.
+    ``UserWarning``; texture coordinates are not used. Vertex normals (``vn``) shade the
+    mesh smoothly, as in Mitsuba and pbrt, unless ``face_normals``; faces without them are
+    flat. Zero-area triangles are dropped with a warning.
 
     Parameters
     ----------
@@ -170,6 +179,9 @@ def load_obj(
         Albedo of faces without a material.
     emission_scale : float, optional
         Factor applied to every ``Ke`` (MTL files carry no unit), ``>= 0``.
+    face_normals : bool, optional
+        Ignore the file's vertex normals and shade every triangle flat (Mitsuba's
+        ``face_normals``).
 
     Returns
     -------
@@ -212,7 +224,7 @@ def load_obj(
     geometries = _trimesh_geometries(obj, "obj", text)
     ignored: dict[str, list[str]] = {}
     approximated: dict[str, str] = {}
-    pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str]] = []
+    pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str, np.ndarray | None]] = []
     for key, geom in geometries:
         material = getattr(getattr(geom, "visual", None), "material", None)
         mname = getattr(material, "name", None)
@@ -242,10 +254,19 @@ def load_obj(
                 ignored[str(mname)] = skipped
         name = f"{obj.stem}/{mname}" if mname else f"{obj.stem}/{key}"
         v, f = _mesh_arrays(geom, str(obj))
+        normals = None if face_normals else _loaded_normals(geom)
         emission = (Le[0] * scale, Le[1] * scale, Le[2] * scale)
-        pending.append((v, f, diffuse, emission, name))
-    for v, f, material, emission, name in pending:
-        scene.add_mesh(v, f, emission=emission, material=material, name=name, degenerate="drop")
+        pending.append((v, f, diffuse, emission, name, normals))
+    for v, f, material, emission, name, normals in pending:
+        scene.add_mesh(
+            v,
+            f,
+            emission=emission,
+            material=material,
+            name=name,
+            degenerate="drop",
+            normals=normals,
+        )
     if approximated:
         what = ", ".join(f"{m} as {kind}" for m, kind in approximated.items())
         warnings.warn(
