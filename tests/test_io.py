@@ -135,8 +135,10 @@ def test_obj_without_materials_gets_the_default(tmp_path: Path) -> None:
 
 
 def test_obj_ignored_mtl_statements_warn(tmp_path: Path) -> None:
-    mtl = MTL.replace("Kd 0.25 0.5 0.75", "Kd 0.25 0.5 0.75\nmap_Kd wood.png\nd 0.5")
-    with pytest.warns(UserWarning, match=r"white: map_kd, d.*only Kd \(diffuse\), Ks and Ns"):
+    mtl = MTL.replace("Kd 0.25 0.5 0.75", "Kd 0.25 0.5 0.75\nmap_Ks shine.png\nd 0.5")
+    with pytest.warns(
+        UserWarning, match=r"white: map_ks, d.*only Kd and map_Kd \(diffuse\), Ks and Ns"
+    ):
         scene = dualight.load_obj(_obj(tmp_path, mtl=mtl))
     white = {m.name: m for m in scene.meshes}["room/white"]
     assert white.material == dualight.Diffuse((0.25, 0.5, 0.75))
@@ -527,15 +529,15 @@ UNSUPPORTED = [
     ),
     (
         "texture",
-        '<shape type="cube"><bsdf type="diffuse"><texture type="bitmap" '
+        '<shape type="cube"><bsdf type="diffuse"><texture type="gradient" '
         'name="reflectance"/></bsdf></shape>',
-        "<texture.*not supported",
+        r'<texture type="gradient".*texture type .gradient. is not supported',
     ),
     (
         "spectrum",
         '<shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" '
         'value="0.5"/></bsdf></shape>',
-        r"'reflectance' must be given as <rgb> or <float> \(got <spectrum>",
+        r"'reflectance' must be given as <rgb> or <float> or <texture> or <ref> \(got <spectrum>",
     ),
     ("envmap", '<emitter type="envmap"/>', "stand-alone emitters are not supported"),
     (

@@ -51,6 +51,7 @@ SCENES = {
     "glossy": functools.partial(scenes.cornell_box, variant="glossy"),
     "coated": functools.partial(scenes.cornell_box, variant="coated"),
     "smooth": functools.partial(scenes.cornell_box, variant="smooth"),
+    "textured": functools.partial(scenes.cornell_box, variant="textured"),
 }
 
 
@@ -82,14 +83,16 @@ CONTROL_LIGHT = {"cornell": 0.95, "caustics": 0.95, "door": 0.9}
 # scene every albedo x0.95 (the plastic floor's base and the walls). Its IOR (the floor's coat
 # and the bubble, the control of tests/test_pathspace_vs_mitsuba.py) moves the image by less
 # than 12 MMLT runs of 24 mutations per pixel resolve: 1.5 -> 1.7 max |t| 3.6, -> 2.0 5.9,
-# against t* 6.4. The smooth-shaded spheres' scene takes the albedo control too: rendering the
-# spheres flat moves its 8x8 blocks by less than 12 runs of 24 mutations per pixel resolve
-# (max |t| 5.0 against t* 6.4; on 4x4 blocks 5.2 against 7.4; the path tracer's and light
-# tracer's tests in test_pathspace_vs_mitsuba.py resolve it).
+# against t* 6.4. The textured box's control moves its textures along u by 1/32 (half a
+# texel of the back wall). The smooth-shaded spheres' scene takes the albedo control too:
+# rendering the spheres flat moves its 8x8 blocks by less than 12 runs of 24 mutations per
+# pixel resolve (max |t| 5.0 against t* 6.4; on 4x4 blocks 5.2 against 7.4; the path tracer's
+# and light tracer's tests in test_pathspace_vs_mitsuba.py resolve it).
 CONTROL_MATERIAL = {
     "glossy": (("roughness_scale", 1.2),),
     "coated": (("reflectance_scale", 0.95),),
     "smooth": (("reflectance_scale", 0.95),),
+    "textured": (("texture_shift", 1 / 32),),
 }
 
 # A known defect (issue 18, found with the independent random streams): under a time limit
@@ -114,7 +117,13 @@ CASES = [("cornell", v) for v in VARIANTS] + [
 # plastic floor: its Dirac coat over a diffuse base); block tests only. PSSMLT, which shares
 # MMLT's BDPT, passed on the glossy box too (100 % of blocks, max |t| 4.90 against 6.38; the
 # control 73 %) and is left out of the suite for its time (30 s).
-MATERIAL_CASES = [("glossy", "mmlt"), ("glossy", "mlt"), ("coated", "mmlt"), ("smooth", "mlt")]
+MATERIAL_CASES = [
+    ("glossy", "mmlt"),
+    ("glossy", "mlt"),
+    ("coated", "mmlt"),
+    ("smooth", "mlt"),
+    ("textured", "mlt"),
+]
 
 
 @functools.cache

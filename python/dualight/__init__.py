@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import io, materials, metrics, radiosity, scenes
+from dualight import io, materials, metrics, radiosity, scenes, textures
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import (
@@ -34,6 +34,7 @@ from dualight.materials import (
 from dualight.methods import METHODS
 from dualight.render import render
 from dualight.scene import Camera, Mesh, Scene
+from dualight.textures import Bitmap, Checkerboard
 
 try:
     __version__ = version("dualight")
@@ -42,7 +43,9 @@ except PackageNotFoundError:  # running from a source tree
 
 __all__ = [
     "METHODS",
+    "Bitmap",
     "Camera",
+    "Checkerboard",
     "Conductor",
     "Dielectric",
     "Diffuse",
@@ -68,4 +71,5 @@ __all__ = [
     "render",
     "save_mitsuba_xml",
     "scenes",
+    "textures",
 ]

@@ -6,14 +6,14 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
     """
-    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None) -> None:
+    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, uvs: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, textures: collections.abc.Sequence[collections.abc.Sequence[tuple[str, ...]]] | None = None) -> None:
         """
-        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals.
+        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface coordinates, one row per position (NaN for meshes without). textures: per material, a list of (BSDF parameter name, Texture).
         """
     def encloses(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> bool:
         """
@@ -231,6 +231,29 @@ class Bsdf:
         """
     @property
     def kind(self) -> BsdfKind:
+        ...
+class Texture:
+    """
+    A bitmap or checkerboard texture (Mitsuba 3's semantics).
+    """
+    @staticmethod
+    def bitmap(texels: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, wrap_mode: str = 'repeat', filter_type: str = 'bilinear', to_uv: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"] = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]) -> Texture:
+        """
+        Linear texels (height, width, 1 or 3), row 0 at v = 0.
+        """
+    @staticmethod
+    def checkerboard(color0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], color1: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], *, to_uv: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"] = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]) -> Texture:
+        ...
+    def eval(self, uv: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        RGB at each row (u, v) of an (N, 2) array: (N, 3).
+        """
+    def eval_scalar(self, uv: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        The value a roughness takes at each row (u, v): (N,).
+        """
+    @property
+    def mean(self) -> typing.Annotated[list[float], "FixedSize(3)"]:
         ...
 class Film:
     """

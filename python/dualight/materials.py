@@ -41,6 +41,8 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from dualight.textures import Texture, check_texture_range
+
 __all__ = [
     "Conductor",
     "Dielectric",
@@ -58,8 +60,12 @@ __all__ = [
 RGB = tuple[float, float, float]
 
 
-def _reflectance(value: Any, owner: str) -> RGB:
-    """``value`` as 3 floats, each finite and in ``[0, 1]``, or a ValueError naming ``owner``."""
+def _reflectance(value: Any, owner: str) -> Any:
+    """``value`` as 3 floats, each finite and in ``[0, 1]``, or a ValueError naming ``owner``;
+    a :class:`~dualight.textures.Texture` whose values lie in ``[0, 1]`` as it is."""
+    if isinstance(value, Texture):
+        check_texture_range(value, owner, "reflectance", 0.0, 1.0)
+        return value
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -82,8 +88,12 @@ def _core_of(material: Material) -> Any:
     return material._core_bsdf()
 
 
-def _rgb(value: Any, owner: str, name: str, upper: float) -> RGB:
-    """``value`` (a number or 3 numbers) as 3 finite floats in ``[0, upper]``."""
+def _rgb(value: Any, owner: str, name: str, upper: float, texture: bool = False) -> Any:
+    """``value`` (a number or 3 numbers) as 3 finite floats in ``[0, upper]``; where
+    ``texture``, a texture whose values lie there as it is."""
+    if texture and isinstance(value, Texture):
+        check_texture_range(value, owner, name, 0.0, upper)
+        return value
     try:
         arr = np.broadcast_to(np.asarray(value, dtype=np.float64), (3,))
     except (TypeError, ValueError) as exc:
@@ -148,6 +158,21 @@ class Material:
 
     __slots__ = ()
     _kind: ClassVar[str]
+    # Fields that may hold a texture, and the core BSDF parameter each drives.
+    _texturable: ClassVar[dict[str, str]] = {}
+
+    def _textures(self) -> list[tuple[str, Any]]:
+        """``(core parameter, core texture)`` for each field that holds a texture."""
+        return [
+            (parameter, getattr(self, name)._core_texture())
+            for name, parameter in self._texturable.items()
+            if isinstance(getattr(self, name), Texture)
+        ]
+
+    @property
+    def textured(self) -> bool:
+        """Whether some parameter is a texture."""
+        return any(isinstance(getattr(self, name), Texture) for name in self._texturable)
 
     def _core_parameters(self) -> tuple[RGB, float]:
         """``(reflectance, ior)`` as the core's ``Scene(kind=..., ior=...)`` arrays take them."""
@@ -203,14 +228,15 @@ class Diffuse(Material):
         If ``reflectance`` is not 3 finite numbers in ``[0, 1]``.
     """
 
-    reflectance: RGB = (0.5, 0.5, 0.5)
+    reflectance: Any = (0.5, 0.5, 0.5)
     _kind: ClassVar[str] = "lambertian"
+    _texturable: ClassVar[dict[str, str]] = {"reflectance": "reflectance"}
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "reflectance", _reflectance(self.reflectance, "Diffuse"))
 
     def _core_parameters(self) -> tuple[RGB, float]:
-        return self.reflectance, 1.0
+        return _constant(self.reflectance), 1.0
 
     def _mitsuba_bsdf(self) -> dict[str, Any]:
         return {
@@ -238,14 +264,15 @@ class Mirror(Material):
         If ``reflectance`` is not 3 finite numbers in ``[0, 1]``.
     """
 
-    reflectance: RGB = (1.0, 1.0, 1.0)
+    reflectance: Any = (1.0, 1.0, 1.0)
     _kind: ClassVar[str] = "mirror"
+    _texturable: ClassVar[dict[str, str]] = {"reflectance": "specular_reflectance"}
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "reflectance", _reflectance(self.reflectance, "Mirror"))
 
     def _core_parameters(self) -> tuple[RGB, float]:
-        return self.reflectance, 1.0
+        return _constant(self.reflectance), 1.0
 
     def _mitsuba_bsdf(self) -> dict[str, Any]:
         conductor = {
@@ -303,7 +330,9 @@ class Dielectric(Material):
         return {"type": "dielectric", "int_ior": float(self.ior), "ext_ior": 1.0}
 
 
-def _mi_rgb(value: RGB) -> dict[str, Any]:
+def _mi_rgb(value: Any) -> dict[str, Any]:
+    if isinstance(value, Texture):
+        return value._mitsuba_dict()
     return {"type": "rgb", "value": [float(c) for c in value]}
 
 
@@ -372,6 +401,7 @@ class Conductor(_Reflector):
     specular_reflectance: Any = 1.0
     two_sided: bool = False
     _kind: ClassVar[str] = "conductor"
+    _texturable: ClassVar[dict[str, str]] = {"specular_reflectance": "specular_reflectance"}
 
     def __post_init__(self) -> None:
         eta, k = _metal(self.material, self.eta, self.k, "Conductor")
@@ -379,7 +409,7 @@ class Conductor(_Reflector):
             object.__setattr__(self, "material", "none")
         object.__setattr__(self, "eta", eta)
         object.__setattr__(self, "k", k)
-        spec = _rgb(self.specular_reflectance, "Conductor", "specular_reflectance", 1.0)
+        spec = _rgb(self.specular_reflectance, "Conductor", "specular_reflectance", 1.0, True)
         object.__setattr__(self, "specular_reflectance", spec)
         object.__setattr__(self, "two_sided", bool(self.two_sided))
 
@@ -387,12 +417,12 @@ class Conductor(_Reflector):
         return _core().Bsdf.conductor(
             eta=self.eta,
             k=self.k,
-            specular_reflectance=self.specular_reflectance,
+            specular_reflectance=_constant(self.specular_reflectance),
             two_sided=self.two_sided,
         )
 
     def _core_parameters(self) -> tuple[RGB, float]:
-        return self.specular_reflectance, 1.0
+        return _constant(self.specular_reflectance), 1.0
 
     def _one_sided_bsdf(self) -> dict[str, Any]:
         spec = {"specular_reflectance": _mi_rgb(self.specular_reflectance)}
@@ -401,8 +431,29 @@ class Conductor(_Reflector):
         return {"type": "conductor", "eta": _mi_rgb(self.eta), "k": _mi_rgb(self.k), **spec}
 
 
-def _alpha(value: Any, owner: str, name: str) -> float:
+def _alpha(value: Any, owner: str, name: str, texture: bool = False) -> Any:
+    if texture and isinstance(value, Texture):
+        check_texture_range(value, owner, name, 0.0, 1e3)
+        return value
     return _real(value, owner, name, 0.0, 1e3)
+
+
+def _constant(value: Any) -> Any:
+    """A colour for the core BSDF's constant: a texture's mean stands for it (the BSDF's flags
+    and radiosity's albedo); at each surface point the texture's value replaces it."""
+    return value.mean if isinstance(value, Texture) else value
+
+
+def _constant_alpha(value: Any) -> Any:
+    if isinstance(value, Texture):
+        r, g, b = value.mean
+        return 0.2126 * r + 0.7152 * g + 0.0722 * b
+    return value
+
+
+def _mi_value(value: Any) -> Any:
+    """A roughness for Mitsuba: a number or a texture's dict."""
+    return value._mitsuba_dict() if isinstance(value, Texture) else float(value)
 
 
 @dataclass(frozen=True)
@@ -432,6 +483,11 @@ class RoughConductor(_Reflector):
     specular_reflectance: Any = 1.0
     two_sided: bool = False
     _kind: ClassVar[str] = "rough_conductor"
+    _texturable: ClassVar[dict[str, str]] = {
+        "specular_reflectance": "specular_reflectance",
+        "alpha_u": "alpha_u",
+        "alpha_v": "alpha_v",
+    }
 
     def __post_init__(self) -> None:
         _roughness(self, "RoughConductor")
@@ -441,16 +497,16 @@ class RoughConductor(_Reflector):
     def _core_bsdf(self) -> Any:
         return _core().Bsdf.rough_conductor(
             distribution=self.distribution,
-            alpha_u=self.alpha_u,
-            alpha_v=self.alpha_v,
+            alpha_u=_constant_alpha(self.alpha_u),
+            alpha_v=_constant_alpha(self.alpha_v),
             eta=self.eta,
             k=self.k,
-            specular_reflectance=self.specular_reflectance,
+            specular_reflectance=_constant(self.specular_reflectance),
             two_sided=self.two_sided,
         )
 
     def _core_parameters(self) -> tuple[RGB, float]:
-        return self.specular_reflectance, 1.0
+        return _constant(self.specular_reflectance), 1.0
 
     def _one_sided_bsdf(self) -> dict[str, Any]:
         metal = Conductor._one_sided_bsdf(self)  # type: ignore[arg-type]
@@ -465,23 +521,24 @@ def _roughness(m: Any, owner: str) -> None:
     if (m.alpha_u is None) != (m.alpha_v is None):
         raise ValueError(f"{owner}: give both alpha_u and alpha_v")
     if m.alpha_u is None:
-        a = _alpha(0.1 if m.alpha is None else m.alpha, owner, "alpha")
+        a = _alpha(0.1 if m.alpha is None else m.alpha, owner, "alpha", True)
         au = av = a
     else:
-        au, av = _alpha(m.alpha_u, owner, "alpha_u"), _alpha(m.alpha_v, owner, "alpha_v")
-        a = au if au == av else None
+        au = _alpha(m.alpha_u, owner, "alpha_u", True)
+        av = _alpha(m.alpha_v, owner, "alpha_v", True)
+        a = au if au is av or (not isinstance(au, Texture) and au == av) else None
     object.__setattr__(m, "alpha", a)
     object.__setattr__(m, "alpha_u", au)
     object.__setattr__(m, "alpha_v", av)
 
 
 def _mi_roughness(m: Any) -> dict[str, Any]:
-    if m.alpha_u == m.alpha_v:
-        return {"distribution": m.distribution, "alpha": float(m.alpha_u)}
+    if m.alpha is not None:
+        return {"distribution": m.distribution, "alpha": _mi_value(m.alpha)}
     return {
         "distribution": m.distribution,
-        "alpha_u": float(m.alpha_u),
-        "alpha_v": float(m.alpha_v),
+        "alpha_u": _mi_value(m.alpha_u),
+        "alpha_v": _mi_value(m.alpha_v),
     }
 
 
@@ -531,6 +588,7 @@ class RoughDielectric(Material):
     distribution: MicrofacetDistribution = "beckmann"
     ior: float = _BK7
     _kind: ClassVar[str] = "rough_dielectric"
+    _texturable: ClassVar[dict[str, str]] = {"alpha_u": "alpha_u", "alpha_v": "alpha_v"}
 
     def __post_init__(self) -> None:
         _roughness(self, "RoughDielectric")
@@ -541,7 +599,10 @@ class RoughDielectric(Material):
 
     def _core_bsdf(self) -> Any:
         return _core().Bsdf.rough_dielectric(
-            distribution=self.distribution, alpha_u=self.alpha_u, alpha_v=self.alpha_v, ior=self.ior
+            distribution=self.distribution,
+            alpha_u=_constant_alpha(self.alpha_u),
+            alpha_v=_constant_alpha(self.alpha_v),
+            ior=self.ior,
         )
 
     def _core_parameters(self) -> tuple[RGB, float]:
@@ -581,26 +642,30 @@ class Plastic(_Reflector):
     nonlinear: bool = False
     two_sided: bool = False
     _kind: ClassVar[str] = "plastic"
+    _texturable: ClassVar[dict[str, str]] = {
+        "diffuse_reflectance": "diffuse_reflectance",
+        "specular_reflectance": "specular_reflectance",
+    }
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
         for name in ("diffuse_reflectance", "specular_reflectance"):
-            object.__setattr__(self, name, _rgb(getattr(self, name), owner, name, 1.0))
+            object.__setattr__(self, name, _rgb(getattr(self, name), owner, name, 1.0, True))
         object.__setattr__(self, "ior", _relative_ior(self.ior, owner))
         object.__setattr__(self, "nonlinear", bool(self.nonlinear))
         object.__setattr__(self, "two_sided", bool(self.two_sided))
 
     def _core_bsdf(self) -> Any:
         return _core().Bsdf.plastic(
-            diffuse_reflectance=self.diffuse_reflectance,
-            specular_reflectance=self.specular_reflectance,
+            diffuse_reflectance=_constant(self.diffuse_reflectance),
+            specular_reflectance=_constant(self.specular_reflectance),
             ior=self.ior,
             nonlinear=self.nonlinear,
             two_sided=self.two_sided,
         )
 
     def _core_parameters(self) -> tuple[RGB, float]:
-        return self.diffuse_reflectance, self.ior
+        return _constant(self.diffuse_reflectance), self.ior
 
     def _one_sided_bsdf(self) -> dict[str, Any]:
         return {
@@ -641,8 +706,8 @@ class RoughPlastic(Plastic):
         return _core().Bsdf.rough_plastic(
             distribution=self.distribution,
             alpha=self.alpha,
-            diffuse_reflectance=self.diffuse_reflectance,
-            specular_reflectance=self.specular_reflectance,
+            diffuse_reflectance=_constant(self.diffuse_reflectance),
+            specular_reflectance=_constant(self.specular_reflectance),
             ior=self.ior,
             nonlinear=self.nonlinear,
             two_sided=self.two_sided,

@@ -177,7 +177,27 @@ def _bsdf(material: Material, name: str) -> dict[str, Any]:
     """The Mitsuba BSDF dict matching a dualight material (see :func:`scene_dict`)."""
     if not isinstance(material, Material):
         raise TypeError(f"mesh {name!r}: unknown material {type(material).__name__}")
-    return material._mitsuba_bsdf()
+    return _mitsuba_objects(material._mitsuba_bsdf())
+
+
+def _mitsuba_objects(plugin: dict[str, Any]) -> dict[str, Any]:
+    """A plugin dict with textures' plain entries as Mitsuba objects: ``to_uv`` as a transform,
+    ``texels`` as a ``mitsuba.Bitmap``."""
+    import mitsuba as mi
+
+    from dualight.textures import uv_matrix4
+
+    out: dict[str, Any] = {}
+    for key, value in plugin.items():
+        if isinstance(value, dict):
+            out[key] = _mitsuba_objects(value)
+        elif key == "to_uv":
+            out[key] = mi.ScalarTransform4f(uv_matrix4(value))
+        elif key == "texels":
+            out["bitmap"] = mi.Bitmap(np.array(value, dtype=np.float32, copy=True))
+        else:
+            out[key] = value
+    return out
 
 
 def _mesh(mesh: Any, key: str) -> Any:
@@ -191,7 +211,15 @@ def _mesh(mesh: Any, key: str) -> Any:
     props["bsdf"] = mi.load_dict(_bsdf(mesh.material, mesh.name))
     if mesh.is_emitter:
         props["emitter"] = mi.load_dict({"type": "area", "radiance": _rgb(mesh.emission)})
-    out = mi.Mesh(key, len(mesh.vertices), len(mesh.triangles), props, has_vertex_normals=smooth)
+    textured = mesh.uv is not None
+    out = mi.Mesh(
+        key,
+        len(mesh.vertices),
+        len(mesh.triangles),
+        props,
+        has_vertex_normals=smooth,
+        has_vertex_texcoords=textured,
+    )
     params = mi.traverse(out)
     positions = np.ascontiguousarray(mesh.vertices, dtype=np.float32).ravel()
     faces = np.ascontiguousarray(mesh.triangles, dtype=np.uint32).ravel()
@@ -200,6 +228,9 @@ def _mesh(mesh: Any, key: str) -> Any:
     if smooth:
         normals = np.ascontiguousarray(mesh.normals, dtype=np.float32).ravel()
         params["vertex_normals"] = type(params["vertex_normals"])(normals)
+    if textured:
+        uv = np.ascontiguousarray(mesh.uv, dtype=np.float32).ravel()
+        params["vertex_texcoords"] = type(params["vertex_texcoords"])(uv)
     params.update()
     return out
 

@@ -173,6 +173,8 @@ class Mesh:
         ``Diffuse(reflectance)`` when not given.
     normals : numpy.ndarray or None
         ``(V, 3)`` unit shading normals (smooth shading), or ``None`` for flat triangles.
+    uv : numpy.ndarray or None
+        ``(V, 2)`` surface coordinates for textures, or ``None`` (each triangle's barycentrics).
     """
 
     vertices: np.ndarray  # (V, 3) float64
@@ -183,6 +185,7 @@ class Mesh:
     areas: np.ndarray = field(repr=False)  # (T,) float64
     material: Material = None  # type: ignore[assignment]  # None: Diffuse(reflectance)
     normals: np.ndarray | None = field(default=None, repr=False)  # (V, 3) float64, unit
+    uv: np.ndarray | None = field(default=None, repr=False)  # (V, 2) float64
 
     def __post_init__(self) -> None:
         if self.material is None:
@@ -226,25 +229,42 @@ def _triangulate(faces: Any, n_vertices: int, name: str) -> np.ndarray:
     return f
 
 
-def _unit_normals(value: Any, n_vertices: int, name: str) -> np.ndarray:
-    """Per-vertex shading normals as unit float64 rows, checked."""
+def _per_vertex(value: Any, n_vertices: int, columns: int, name: str, what: str) -> np.ndarray:
+    """A per-vertex attribute as an (V, columns) float64 copy, its shape and type checked."""
     given = np.asarray(value).dtype
     if given.kind not in "iuf":
-        raise ValueError(f"{name}: normals must be (V, 3) real numbers, got {given}")
-    ns = np.array(value, dtype=np.float64, copy=True)
-    if ns.shape != (n_vertices, 3):
+        raise ValueError(f"{name}: {what} must be (V, {columns}) real numbers, got {given}")
+    values = np.array(value, dtype=np.float64, copy=True)
+    if values.shape != (n_vertices, columns):
         raise ValueError(
-            f"{name}: normals must have shape ({n_vertices}, 3), one per vertex, got {ns.shape}"
+            f"{name}: {what} must have shape ({n_vertices}, {columns}), one per vertex, "
+            f"got {values.shape}"
         )
+    return values
+
+
+def _bad_row(bad: np.ndarray, values: np.ndarray, name: str, what: str, rule: str) -> None:
+    if np.any(bad):
+        row = int(np.argmax(bad))
+        raise ValueError(f"{name}: {what} {row} is {values[row].tolist()}; {rule}")
+
+
+def _unit_normals(value: Any, n_vertices: int, name: str) -> np.ndarray:
+    """Per-vertex shading normals as unit float64 rows, checked."""
+    ns = _per_vertex(value, n_vertices, 3, name, "normals")
     with np.errstate(over="ignore", invalid="ignore"):
         length = np.linalg.norm(ns, axis=1)
     bad = ~(np.isfinite(length) & (length > 1e-30) & (length < 1e30))
-    if np.any(bad):
-        row = int(np.argmax(bad))
-        raise ValueError(
-            f"{name}: normal {row} is {ns[row].tolist()}; normals must be finite and non-zero"
-        )
+    _bad_row(bad, ns, name, "normal", "normals must be finite and non-zero")
     return ns / length[:, None]
+
+
+def _surface_uv(value: Any, n_vertices: int, name: str) -> np.ndarray:
+    """Per-vertex surface coordinates as float64 rows, checked."""
+    uv = _per_vertex(value, n_vertices, 2, name, "uv")
+    bad = ~(np.isfinite(uv).all(axis=1) & (np.abs(uv).max(axis=1) <= 1e12))
+    _bad_row(bad, uv, name, "uv", "uv must be finite, |uv| <= 1e12")
+    return uv
 
 
 def _colour(value: Any, name: str, *, upper: float | None) -> Vec3:
@@ -428,6 +448,7 @@ class Scene:
         name: str | None = None,
         degenerate: Literal["raise", "drop"] = "raise",
         normals: Any = None,
+        uv: Any = None,
     ) -> int:
         """Add a triangle or quad mesh with one material; returns its index.
 
@@ -458,6 +479,10 @@ class Scene:
             interpolated normal (Phong's normal interpolation, Mitsuba's smooth shading), with
             the adjoint correction for light paths [Veach 1997, sec. 5.3]. ``None`` (the
             default) shades every triangle flat, like Mitsuba's ``face_normals``.
+        uv:
+            ``(V, 2)`` surface coordinates, one ``(u, v)`` per vertex, where textures are
+            looked up (:mod:`dualight.textures`); ``None`` (the default) gives each triangle
+            its barycentrics, as Mitsuba does for meshes without them.
 
         Returns
         -------
@@ -499,6 +524,7 @@ class Scene:
             )
         tris = _triangulate(faces, len(v), name)
         ns = None if normals is None else _unit_normals(normals, len(v), name)
+        uvs = None if uv is None else _surface_uv(uv, len(v), name)
         rho = _colour(reflectance, f"{name}: reflectance", upper=1.0)
         if material is None:
             material = Diffuse(rho)
@@ -527,11 +553,12 @@ class Scene:
             tris, areas = tris[~zero], areas[~zero]
             if len(tris) == 0:
                 raise ValueError(f"{name}: every triangle has zero area")
-        for arr in (v, tris, areas) + (() if ns is None else (ns,)):
-            arr.flags.writeable = False
+        for arr in (v, tris, areas, ns, uvs):
+            if arr is not None:
+                arr.flags.writeable = False
         with self._lock:
             self._refuse_while_in_use("add_mesh")
-            self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material, ns))
+            self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material, ns, uvs))
             self._compiled = None
             self._checked_facing = set()
             return len(self._meshes) - 1
@@ -638,6 +665,8 @@ class Scene:
                 emission,
                 bsdfs=bsdfs,
                 normals=self._vertex_normals(),
+                uvs=self._vertex_uvs(),
+                textures=self._material_textures(),
             )
         return self._compiled
 
@@ -649,6 +678,20 @@ class Scene:
             np.zeros((len(m.vertices), 3)) if m.normals is None else m.normals for m in self._meshes
         ]
         return np.concatenate(parts).astype(np.float32)
+
+    def _vertex_uvs(self) -> np.ndarray | None:
+        """Surface coordinates of all vertices as float32 (NaN on meshes without), or None."""
+        if all(m.uv is None for m in self._meshes):
+            return None
+        parts = [
+            np.full((len(m.vertices), 2), np.nan) if m.uv is None else m.uv for m in self._meshes
+        ]
+        return np.concatenate(parts).astype(np.float32)
+
+    def _material_textures(self) -> list[list[tuple[str, Any]]] | None:
+        """Per mesh, its material's ``(parameter, core texture)`` pairs, or None if none has any."""
+        textures = [m.material._textures() for m in self._meshes]
+        return textures if any(textures) else None
 
     def triangle_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """All meshes as one triangle list, in the compiled scene's order: positions ``(V, 3)``,

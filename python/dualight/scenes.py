@@ -31,6 +31,7 @@ from dualight.materials import (
     ThinDielectric,
 )
 from dualight.scene import Camera, Scene
+from dualight.textures import Bitmap, Checkerboard
 
 # Cornell box data, www.graphics.cornell.edu/online/box/data.html (quads, millimetres).
 _CORNELL_QUADS: dict[str, list[list[tuple[float, float, float]]]] = {
@@ -114,7 +115,7 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
 CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
 CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
 _CORNELL_SPHERE_SUBDIVISIONS = 5
-CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated", "smooth")
+CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated", "smooth", "textured")
 # The "smooth" variant's spheres: coarse (320 triangles) so that shading normals matter.
 _CORNELL_SMOOTH_SUBDIVISIONS = 2
 
@@ -128,6 +129,7 @@ def cornell_box(
     ior: float = 1.5,
     roughness_scale: float = 1.0,
     sphere_normals: bool = True,
+    texture_shift: float = 0.0,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
@@ -165,7 +167,12 @@ def cornell_box(
         coarse spheres (2 subdivisions, 320 triangles each) shaded smoothly by their vertex
         normals (``add_mesh(..., normals=...)``): ``white_sphere`` (a
         :class:`~dualight.Diffuse` of the walls' white) and ``glass_sphere`` (a
-        :class:`~dualight.Dielectric` of index ``ior``).
+        :class:`~dualight.Dielectric` of index ``ior``). ``"textured"``: the classic box
+        with textures (Mitsuba's ``bitmap`` and ``checkerboard``) on surfaces with texture
+        coordinates (each quad spans the unit square of ``(u, v)``): a 16 x 16 bitmap on the
+        back wall (bilinear), a checkerboard floor (4 x 4 squares), and the tall block a
+        :class:`~dualight.RoughConductor` of Mitsuba's aluminium whose GGX roughness is a
+        checkerboard of 0.05 and 0.35.
     ior : float, optional
         The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
         the material accepts).
@@ -175,6 +182,9 @@ def cornell_box(
     sphere_normals : bool, optional
         Whether the ``"smooth"`` variant's spheres carry their vertex normals; ``False``
         renders the same triangles flat (a negative control).
+    texture_shift : float, optional
+        Moves every texture of the ``"textured"`` variant along ``u`` by this much (1/32:
+        half a texel of the back wall; a negative control), finite.
 
     Returns
     -------
@@ -205,7 +215,10 @@ def cornell_box(
         )
     if not (math.isfinite(float(roughness_scale)) and 0.0 < float(roughness_scale) <= 4.0):
         raise ValueError(f"cornell_box: roughness_scale must be in (0, 4], got {roughness_scale!r}")
-    spheres = variant != "classic"
+    if not math.isfinite(float(texture_shift)):
+        raise ValueError(f"cornell_box: texture_shift must be finite, got {texture_shift!r}")
+    textures = _cornell_textures(float(texture_shift)) if variant == "textured" else {}
+    spheres = variant not in ("classic", "textured")
     if variant == "glossy":
         a = float(roughness_scale)
         sphere_materials: tuple[Material, Material] = (
@@ -245,6 +258,10 @@ def cornell_box(
             quads = [_orient(q, _CORNELL_ROOM_CENTRE, inward=True) for q in quads]
         v, f = _quads_mesh(quads)
         albedo = tuple(reflectance_scale * c for c in rho)
+        if name in textures:
+            uv = np.tile([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], (len(quads), 1))
+            scene.add_mesh(v, f, material=textures[name], name=name, uv=uv)
+            continue
         if name == "floor" and variant == "glossy":
             coat = RoughPlastic(
                 diffuse_reflectance=albedo,
@@ -282,6 +299,24 @@ def cornell_box(
         name="light",
     )
     return scene
+
+
+def _cornell_textures(shift: float) -> dict[str, Material]:
+    """The "textured" variant's materials, every texture moved by ``shift`` along u."""
+    i, j = np.meshgrid(np.arange(16), np.arange(16), indexing="ij")
+    texels = np.stack(
+        [0.15 + 0.6 * i / 15, 0.15 + 0.6 * j / 15, 0.35 + 0.3 * ((i // 2 + j // 2) % 2)], axis=2
+    )
+    move = [[1.0, 0.0, shift], [0.0, 1.0, 0.0]]
+    four = [[4.0, 0.0, 4.0 * shift], [0.0, 4.0, 0.0]]
+    two = [[2.0, 0.0, 2.0 * shift], [0.0, 2.0, 0.0]]
+    return {
+        "back_wall": Diffuse(Bitmap(data=texels, to_uv=move)),
+        "floor": Diffuse(Checkerboard((0.75, 0.75, 0.7), (0.2, 0.2, 0.25), to_uv=four)),
+        "tall_block": RoughConductor(
+            material="Al", distribution="ggx", alpha=Checkerboard(0.05, 0.35, to_uv=two)
+        ),
+    }
 
 
 def furnace_radiance(reflectance: float, emission: float) -> float:

@@ -7,6 +7,7 @@
 
 #include "bindings/materials.h"
 #include "bindings/numpy_util.h"
+#include "bindings/textures.h"
 #include "core/parallel.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
@@ -20,6 +21,24 @@ using IndexArray = py::array_t<uint32_t, py::array::c_style | py::array::forceca
 
 Vec3 to_vec3(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
 
+// Per material: (BSDF parameter name, texture) pairs.
+using MaterialTextures = std::vector<std::pair<std::string, TextureObject>>;
+
+void add_textures(const std::vector<MaterialTextures>& textures, std::vector<Material>& materials) {
+  if (textures.size() != materials.size()) {
+    throw py::value_error("textures needs one list per material (" + std::to_string(materials.size()) + ")");
+  }
+  for (size_t i = 0; i < materials.size(); ++i) {
+    for (const auto& [name, t] : textures[i]) {
+      const BsdfParameter p = bsdf_parameter(name);
+      if (!has_parameter(materials[i].bsdf, p)) {
+        throw py::value_error("material " + std::to_string(i) + ": its BSDF has no texturable '" + name + "'");
+      }
+      materials[i].textures.push_back({p, t.texture});
+    }
+  }
+}
+
 // One material per row of reflectance/emission. `kind` (BsdfKind values) and `ior` are optional
 // so that diffuse-only callers (radiosity patches) need not pass them.
 std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray& triangles,
@@ -27,10 +46,13 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                                   const FloatArray& emission, const std::optional<IndexArray>& kind,
                                   const std::optional<FloatArray>& ior,
                                   const std::optional<std::vector<BsdfObject>>& bsdfs,
-                                  const std::optional<FloatArray>& normals) {
+                                  const std::optional<FloatArray>& normals, const std::optional<FloatArray>& uvs,
+                                  const std::optional<std::vector<MaterialTextures>>& textures) {
   std::vector<float> p = rows_of(positions, 3, "positions");
   std::vector<float> ns = normals ? rows_of(*normals, 3, "normals") : std::vector<float>{};
   if (normals && ns.size() != p.size()) throw py::value_error("normals needs one row per position");
+  std::vector<float> uv = uvs ? rows_of(*uvs, 2, "uvs") : std::vector<float>{};
+  if (uvs && uv.size() / 2 != p.size() / 3) throw py::value_error("uvs needs one row per position");
   std::vector<uint32_t> t = rows_of(triangles, 3, "triangles");
   if (material_of.ndim() != 1) throw py::value_error("material_of must be one-dimensional");
   std::vector<uint32_t> m(material_of.data(), material_of.data() + material_of.size());
@@ -56,9 +78,10 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
     materials.push_back({bsdfs ? (*bsdfs)[i].bsdf : make_bsdf(k, Color(rho[3 * i], rho[3 * i + 1], rho[3 * i + 2]), eta),
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
+  if (textures) add_textures(*textures, materials);
   py::gil_scoped_release release;  // the BVH build can take a while on large meshes
   return std::make_shared<Scene>(std::move(p), std::move(t), std::move(m), std::move(materials),
-                                 std::vector<Emitter>{}, std::move(ns));
+                                 std::vector<Emitter>{}, std::move(ns), std::move(uv));
 }
 
 }  // namespace
@@ -69,11 +92,14 @@ void bind_geometry(py::module_& m) {
       .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
            py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
            py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(), py::arg("normals") = py::none(),
+           py::arg("uvs") = py::none(), py::arg("textures") = py::none(),
            "Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one "
            "dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a "
            "dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse "
            "albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a "
-           "triangle is smooth-shaded when its three vertices have non-zero normals.")
+           "triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface "
+           "coordinates, one row per position (NaN for meshes without). textures: per material, a list of "
+           "(BSDF parameter name, Texture).")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly(

@@ -6,6 +6,7 @@ namespace py = pybind11;
 namespace dualight::bindings {
 void bind_geometry(py::module_& m);
 void bind_materials(py::module_& m);
+void bind_textures(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
 void bind_mlt(py::module_& m);
@@ -17,6 +18,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "dualight's compiled core; use the `dualight` package instead of this module.";
   dualight::bindings::bind_geometry(m);
   dualight::bindings::bind_materials(m);
+  dualight::bindings::bind_textures(m);
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
   dualight::bindings::bind_mlt(m);

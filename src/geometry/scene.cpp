@@ -26,7 +26,8 @@ std::pair<Vec3, float> Scene::normal_and_double_area(uint32_t prim) const {
 }
 
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
-             std::vector<Material> materials, std::vector<Emitter> emitters, std::vector<float> normals)
+             std::vector<Material> materials, std::vector<Emitter> emitters, std::vector<float> normals,
+             std::vector<float> uvs)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
       material_of_(std::move(material_of)),
@@ -49,6 +50,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     if (m >= materials_.size()) throw std::invalid_argument("material index out of range");
   }
   set_vertex_normals(normals);
+  set_vertex_uvs(std::move(uvs));
 
   bounds_min_ = Vec3(std::numeric_limits<float>::infinity());
   bounds_max_ = -bounds_min_;
@@ -121,12 +123,36 @@ void Scene::set_vertex_normals(const std::vector<float>& normals) {
   }
 }
 
-Vec3 Scene::shading_normal(uint32_t prim, float u, float v) const {
-  if (smooth_.empty() || !smooth_[prim]) return normal_[prim];
+Vec3 Scene::interpolated_normal(uint32_t prim, float u, float v) const {
   const uint32_t* t = &triangles_[3 * prim];
   const Vec3 n = vertex_normal_[t[0]] * (1.f - u - v) + vertex_normal_[t[1]] * u + vertex_normal_[t[2]] * v;
   const float len = length(n);
   return len > 0.f ? n / len : normal_[prim];  // opposite normals cancelling: the face's own
+}
+
+void Scene::set_vertex_uvs(std::vector<float> uvs) {
+  if (uvs.empty()) return;
+  if (uvs.size() != positions_.size() / 3 * 2) throw std::invalid_argument("uvs must hold 2 values per vertex");
+  for (const float x : uvs) {
+    if (std::isinf(x)) throw std::invalid_argument("uvs must be finite (NaN marks a mesh without them)");
+  }
+  uv_ = std::move(uvs);
+  has_uv_.resize(triangles_.size() / 3);
+  for (size_t prim = 0; prim < has_uv_.size(); ++prim) {
+    bool all = true;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = triangles_[3 * prim + k];
+      all = all && !std::isnan(uv_[2 * v]) && !std::isnan(uv_[2 * v + 1]);
+    }
+    has_uv_[prim] = all;
+  }
+}
+
+Point2 Scene::interpolated_uv(uint32_t prim, float u, float v) const {
+  const uint32_t* t = &triangles_[3 * prim];
+  const float w = 1.f - u - v;
+  return {w * uv_[2 * t[0]] + u * uv_[2 * t[1]] + v * uv_[2 * t[2]],
+          w * uv_[2 * t[0] + 1] + u * uv_[2 * t[1] + 1] + v * uv_[2 * t[2] + 1]};
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -147,6 +173,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;
   hit.n = normal_[prim];
   hit.ns = shading_normal(prim, rh.u, rh.v);
+  hit.uv = surface_uv(prim, rh.u, rh.v);
   hit.t = rh.t;
   hit.prim = prim;
   hit.material = &materials_[material_of_[prim]];

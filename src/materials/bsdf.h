@@ -42,6 +42,8 @@ namespace bsdf_dispatch {
 Color eval_f(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m);
 float pdf_w(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m);
 bool sample(const Bsdf& b, const Vec3& wo, Point2 u, TransportMode m, BsdfSample& s);
+Color eval_f_world(const Bsdf& b, const Vec3& ns, const Vec3& wo, const Vec3& wi, TransportMode m);
+float pdf_w_world(const Bsdf& b, const Vec3& ns, const Vec3& wo, const Vec3& wi, TransportMode m);
 }  // namespace bsdf_dispatch
 
 inline Color eval_f(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode m) {
@@ -55,6 +57,24 @@ inline float pdf_w(const Bsdf& b, const Vec3& wo, const Vec3& wi, TransportMode 
 inline bool sample(const Bsdf& b, const Vec3& wo, Point2 u, TransportMode m, BsdfSample& s) {
   if (const auto* x = std::get_if<Lambertian>(&b)) return sample(*x, wo, u, m, s);
   return bsdf_dispatch::sample(b, wo, u, m, s);
+}
+
+// eval_f and pdf_w of world directions wo, wi (unit) in the frame Frame::from_normal(ns): the
+// same values as eval_f/pdf_w of frame.to_local(wo), frame.to_local(wi). A Lambertian BSDF
+// needs only the two cosines; the others build the frame out of line. (Built before a branch
+// on the member, the frame was computed whole for Lambertian surfaces too: BDPT took 9 % more
+// instructions to render the Cornell box.)
+inline Color eval_f_world(const Bsdf& b, const Vec3& ns, const Vec3& wo, const Vec3& wi, TransportMode m) {
+  if (const auto* x = std::get_if<Lambertian>(&b)) {
+    return eval_f(*x, Vec3(0.f, 0.f, dot(wo, ns)), Vec3(0.f, 0.f, dot(wi, ns)), m);
+  }
+  return bsdf_dispatch::eval_f_world(b, ns, wo, wi, m);
+}
+inline float pdf_w_world(const Bsdf& b, const Vec3& ns, const Vec3& wo, const Vec3& wi, TransportMode m) {
+  if (const auto* x = std::get_if<Lambertian>(&b)) {
+    return pdf_w(*x, Vec3(0.f, 0.f, dot(wo, ns)), Vec3(0.f, 0.f, dot(wi, ns)), m);
+  }
+  return bsdf_dispatch::pdf_w_world(b, ns, wo, wi, m);
 }
 
 // The Dirac lobe joining wo (camera side) and wi (light side), local directions.

@@ -9,7 +9,7 @@ namespace dualight {
 
 DeltaLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light) {
   const Frame frame = shading_frame(v);
-  return delta_lobe(v.material->bsdf, frame.to_local(to_eye), frame.to_local(to_light));
+  return with_bsdf(v, [&](const Bsdf& b) { return delta_lobe(b, frame.to_local(to_eye), frame.to_local(to_light)); });
 }
 
 bool specular_direction(const Vertex& v, const Vec3& wo, bool refraction, Vec3& wi) {
@@ -17,7 +17,7 @@ bool specular_direction(const Vertex& v, const Vec3& wo, bool refraction, Vec3& 
   const Vec3 w = frame.to_local(wo);
   if (w.z == 0.f) return false;
   Vec3 local;
-  if (!delta_direction(v.material->bsdf, w, refraction, local)) return false;
+  if (!with_bsdf(v, [&](const Bsdf& b) { return delta_direction(b, w, refraction, local); })) return false;
   // Refracted directions are renormalised (rounding in Snell's law); reflections keep their length.
   wi = refraction ? normalize(frame.to_world(local)) : frame.to_world(local);
   return true;
@@ -37,8 +37,10 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
     if (is_specular(z[i])) {
       fs = specular_lobe(z[i], to_eye, to_light).coef;
     } else {
-      const Frame frame = shading_frame(z[i]);
-      fs = eval_f(z[i].material->bsdf, frame.to_local(to_eye), frame.to_local(to_light), TransportMode::Radiance) *
+      fs = with_bsdf(z[i],
+                     [&](const Bsdf& b) {
+                       return eval_f_world(b, z[i].ns, to_eye, to_light, TransportMode::Radiance);
+                     }) *
            shading_ratio(z[i].n, z[i].ns, to_light);
     }
     for (int c = 0; c < 3; ++c) f[c] *= fs[c];
@@ -63,9 +65,7 @@ double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced) 
     const DeltaLobe lobe = specular_lobe(v, w, to_light);
     return (forced ? 1.0 : lobe.prob) * lobe.importance_ratio * geometry_term(v, z[i]);
   }
-  const Frame frame = shading_frame(v);
-  return solid_angle_to_area(
-      pdf_w(v.material->bsdf, frame.to_local(to_light), frame.to_local(w), TransportMode::Importance), v, z[i]);
+  return solid_angle_to_area(surface_pdf_w(v, to_light, w, TransportMode::Importance), v, z[i]);
 }
 
 double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool forced) {
@@ -79,9 +79,7 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
     const DeltaLobe lobe = specular_lobe(v, to_eye, w);
     return (forced ? 1.0 : lobe.prob) * geometry_term(v, z[i]);
   }
-  const Frame frame = shading_frame(v);
-  return solid_angle_to_area(
-      pdf_w(v.material->bsdf, frame.to_local(to_eye), frame.to_local(w), TransportMode::Radiance), v, z[i]);
+  return solid_angle_to_area(surface_pdf_w(v, to_eye, w, TransportMode::Radiance), v, z[i]);
 }
 
 bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters) {
@@ -99,7 +97,7 @@ bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex&
 bool sample_scatter(const Vertex& v, const Vec3& wo, TransportMode mode, Point2 u, Vec3& wi) {
   const Frame frame = shading_frame(v);
   BsdfSample bs;
-  if (!sample(v.material->bsdf, frame.to_local(wo), u, mode, bs)) return false;
+  if (!with_bsdf(v, [&](const Bsdf& b) { return sample(b, frame.to_local(wo), u, mode, bs); })) return false;
   wi = frame.to_world(bs.wi);
   return true;
 }

@@ -7,9 +7,8 @@
 namespace dualight {
 
 Color scattering(const Vertex& v, const Vec3& next, TransportMode mode) {
-  const Frame frame = shading_frame(v);
   const Vec3 wi = normalize(next - v.p);
-  const Color f = eval_f(v.material->bsdf, frame.to_local(v.wo), frame.to_local(wi), mode);
+  const Color f = with_bsdf(v, [&](const Bsdf& b) { return eval_f_world(b, v.ns, v.wo, wi, mode); });
   return f * shading_ratio(v.n, v.ns, mode == TransportMode::Radiance ? wi : v.wo);
 }
 
@@ -23,12 +22,9 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
     case VertexType::Light:
       pdf_w = emission_pdf_w(v, w);
       break;
-    case VertexType::Surface: {
-      const Frame frame = shading_frame(v);
-      const Vec3 wo = frame.to_local(normalize(prev->p - v.p));
-      pdf_w = dualight::pdf_w(v.material->bsdf, wo, frame.to_local(w), TransportMode::Radiance);
+    case VertexType::Surface:
+      pdf_w = surface_pdf_w(v, normalize(prev->p - v.p), w, TransportMode::Radiance);
       break;
-    }
   }
   return solid_angle_to_area(pdf_w, v, next);
 }
@@ -58,8 +54,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       case VertexType::Surface:
         break;
     }
-    const Frame frame = shading_frame(u);
-    return dualight::pdf_w(u.material->bsdf, frame.to_local(u.wo), frame.to_local(w), mode);
+    return surface_pdf_w(u, u.wo, w, mode);
   };
   const auto record = [&](float& worst, float cached, float recomputed) {
     const float scale = std::max(std::abs(cached), std::abs(recomputed));
@@ -78,10 +73,7 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
       const Vertex& next = path[i + 1];
       const Vertex& after = path[i + 2];
       float pdf = 0.f;
-      if (!next.delta) {
-        const Frame frame = shading_frame(next);
-        pdf = dualight::pdf_w(next.material->bsdf, frame.to_local(-after.wo), frame.to_local(next.wo), mode);
-      }
+      if (!next.delta) pdf = surface_pdf_w(next, -after.wo, next.wo, mode);
       record(check.pdf_rev, v.pdf_rev, solid_angle_to_area(pdf, next, v));
     }
     // beta(i) = beta(i - 1) * f |cos| / pdf_w at i - 1; at the subpath's start the factor is the
@@ -92,9 +84,9 @@ PathCheck verify(const PinholeCamera& camera, const Path& path, bool from_camera
     } else if (prev.type == VertexType::Surface) {
       if (prev.delta) continue;  // the discrete lobe's weight is not a density ratio
       const Frame frame = shading_frame(prev);
-      const Vec3 wo = frame.to_local(prev.wo), wi = frame.to_local(w);
-      factor = eval_f(prev.material->bsdf, wo, wi, mode) *
-               (std::abs(wi.z) * walk_weight_correction(prev.n, prev.ns, prev.wo, w, mode) / pdf_w_at(prev, w));
+      const Vec3 wi = frame.to_local(w);
+      const Color f = with_bsdf(prev, [&](const Bsdf& b) { return eval_f(b, frame.to_local(prev.wo), wi, mode); });
+      factor = f * (std::abs(wi.z) * walk_weight_correction(prev.n, prev.ns, prev.wo, w, mode) / pdf_w_at(prev, w));
     }
     const Color beta = prev.beta * factor;
     for (int c = 0; c < 3; ++c) {

@@ -11,6 +11,7 @@
 // and skip strategies that would connect at a delta vertex.
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/frame.h"
@@ -27,6 +28,7 @@ struct Vertex {
   Vec3 p;                  // position
   Vec3 n;                  // geometric normal; the view direction at the camera
   Vec3 ns;                 // shading normal, the BSDF's frame (materials/shading_normal.h); n if flat
+  Point2 uv;               // surface coordinates, where textures are looked up
   Vec3 wo;                 // unit direction to the previous vertex of the subpath (0 at its start)
   uint32_t prim = 0;
   const Material* material = nullptr;
@@ -64,6 +66,7 @@ inline Vertex surface_vertex(const SurfaceHit& hit, const Vec3& d) {
   v.p = hit.p;
   v.n = hit.n;
   v.ns = hit.ns;
+  v.uv = hit.uv;
   v.wo = -d;
   v.prim = hit.prim;
   v.material = hit.material;
@@ -71,8 +74,19 @@ inline Vertex surface_vertex(const SurfaceHit& hit, const Vec3& d) {
   return v;
 }
 
+// f(surface vertex v's BSDF), its textures looked up at v.
+template <class F>
+[[gnu::always_inline]] inline decltype(auto) with_bsdf(const Vertex& v, F&& f) {
+  return with_bsdf(*v.material, v.uv, std::forward<F>(f));
+}
+
 // The frame v's BSDF is evaluated in.
 inline Frame shading_frame(const Vertex& v) { return Frame::from_normal(v.ns); }
+
+// Solid-angle density with which surface vertex v, reached along wo (world, unit), samples w.
+inline float surface_pdf_w(const Vertex& v, const Vec3& wo, const Vec3& w, TransportMode mode) {
+  return with_bsdf(v, [&](const Bsdf& b) { return pdf_w_world(b, v.ns, wo, w, mode); });
+}
 
 // The start of a light subpath (or the emitter end of a connection): a point on an emitter
 // the scene chose by power (u_select), sampled by the emitter (u).

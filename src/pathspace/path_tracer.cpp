@@ -1,5 +1,7 @@
 #include "pathspace/path_tracer.h"
 
+#include <optional>
+
 #include "core/frame.h"
 #include "core/sampling.h"
 #include "materials/shading_normal.h"
@@ -27,12 +29,11 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
 
 // Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
 // path's throughput beta.
-inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Frame& frame, const Vec3& wo,
-                        const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
+inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Frame& frame,
+                        const Vec3& wo, const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
   const EmitterChoice choice = scene.choose_emitter(u_select);
   LightSample ls;
   if (!sample_Li(*choice.emitter, choice.pmf, hit.p, u_light, ls)) return Color(0.f);
-  const Bsdf& bsdf = hit.material->bsdf;
   const Vec3 wi = frame.to_local(ls.wi);
   const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
   if (is_black(f)) {
@@ -75,14 +76,15 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     // correction for shading normals (materials/shading_normal.h).
     const Frame frame = Frame::from_normal(hit.ns);
     const Vec3 wo = frame.to_local(wo_world);
-    const Bsdf& bsdf = hit.material->bsdf;
-
+    std::optional<Bsdf> textured;  // engaged only where textures change the material's BSDF
+    const Bsdf& bsdf = hit.material->textured() ? textured.emplace(hit.material->bsdf_at(hit.uv))
+                                                : hit.material->bsdf;
     if (has_emitters && is_delta(bsdf)) {
       ++counters.skipped_connections;  // no light sample can meet a specular lobe
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      L += next_event(scene, hit, frame, wo, beta, u_select, u_light, counters);
+      L += next_event(scene, hit, bsdf, frame, wo, beta, u_select, u_light, counters);
     }
 
     BsdfSample bs;

@@ -45,14 +45,18 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     const Frame frame = shading_frame(cur);
     const Vec3 wo = frame.to_local(cur.wo);
     BsdfSample bs;
-    if (!sample(cur.material->bsdf, wo, sampler.next_2d(), mode, bs)) return;
     float pdf_rev_w = 0.f;
+    const bool sampled = with_bsdf(cur, [&](const Bsdf& b) {
+      if (!sample(b, wo, sampler.next_2d(), mode, bs)) return false;
+      if (!bs.delta) pdf_rev_w = dualight::pdf_w(b, bs.wi, wo, mode);
+      return true;
+    });
+    if (!sampled) return;
     if (bs.delta) {
       cur.delta = true;
       pdf_w = 0.f;
     } else {
       pdf_w = bs.pdf_w;
-      pdf_rev_w = dualight::pdf_w(cur.material->bsdf, bs.wi, wo, mode);
     }
     const Vec3 wi = frame.to_world(bs.wi);
     const Color weight = bs.weight * walk_weight_correction(cur.n, cur.ns, cur.wo, wi, mode);

@@ -38,6 +38,9 @@ The references (see README.md beside them for how long they took):
   ``plastic``), ``max_depth=8``, ``rr_depth=5``.
 * ``smooth_64``: ``cornell_box(resolution=(64, 64), variant="smooth")`` (coarse white and
   glass spheres shaded by their vertex normals), ``max_depth=8``, ``rr_depth=5``.
+* ``textured_64``: ``cornell_box(resolution=(64, 64), variant="textured")`` (a bitmap back
+  wall, a checkerboard floor, an aluminium block of checkerboard roughness), ``max_depth=8``,
+  ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -117,6 +120,13 @@ def _references() -> dict[str, Reference]:
             "coated_64",
             'cornell_box(resolution=(64, 64), variant="coated")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="coated"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "textured_64",
+            'cornell_box(resolution=(64, 64), variant="textured")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="textured"),
             spp=131072,
             max_depth=8,
         ),

@@ -147,3 +147,17 @@ def _angle_weighted_normals(v: np.ndarray, f: np.ndarray) -> np.ndarray | None:
     used[f.ravel()] = True
     vn[~used | (length[:, 0] == 0)] = (0.0, 0.0, 1.0)  # unused vertices need some valid normal
     return vn
+
+
+def _loaded_uv(geom: Any, file_type: str) -> np.ndarray | None:
+    """The texture coordinates an OBJ/PLY file gave per vertex, as Mitsuba reads them (an OBJ's
+    ``vt`` with v flipped, ``1 - v``, so images appear upright; a PLY's as they are), or None."""
+    uv = getattr(getattr(geom, "visual", None), "uv", None)
+    if uv is None:
+        return None
+    uv = np.asarray(uv, dtype=np.float64)
+    if uv.shape != (len(geom.vertices), 2) or not np.all(np.isfinite(uv)):
+        return None
+    if file_type == "obj":
+        uv = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]])
+    return uv

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import functools
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -11,6 +13,7 @@ import numpy as np
 from dualight.io._common import PathLike
 from dualight.materials import Material
 from dualight.scene import Scene
+from dualight.textures import uv_matrix4
 
 __all__ = ["save_mitsuba_xml"]
 
@@ -26,8 +29,16 @@ def _element(parent: ET.Element, tag: str, **attrib: Any) -> ET.Element:
     return ET.SubElement(parent, tag, {k: str(v) for k, v in attrib.items()})
 
 
-def _write_plugin(parent: ET.Element, tag: str, plugin: dict[str, Any], name: str = "") -> None:
-    """A Mitsuba plugin dict (``mitsuba.load_dict`` form) as an XML element."""
+def _write_plugin(
+    parent: ET.Element,
+    tag: str,
+    plugin: dict[str, Any],
+    name: str = "",
+    save_texels: Callable[[np.ndarray], str] | None = None,
+) -> None:
+    """A Mitsuba plugin dict (``mitsuba.load_dict`` form, textures as
+    :meth:`dualight.textures.Texture._mitsuba_dict` gives them) as an XML element; an array
+    texture's texels go to a file through ``save_texels``, which returns its name."""
     attrib = {"type": plugin["type"]} | ({"name": name} if name else {})
     element = _element(parent, tag, **attrib)
     for key, value in plugin.items():
@@ -35,8 +46,17 @@ def _write_plugin(parent: ET.Element, tag: str, plugin: dict[str, Any], name: st
             continue
         if isinstance(value, dict) and value.get("type") == "rgb":
             _element(element, "rgb", name=key, value=_fmt(value["value"]))
+        elif isinstance(value, dict) and value.get("type") in _TEXTURES:
+            _write_plugin(element, "texture", value, key, save_texels)
         elif isinstance(value, dict):
-            _write_plugin(element, tag, value)
+            _write_plugin(element, tag, value, save_texels=save_texels)
+        elif key == "to_uv":
+            transform = _element(element, "transform", name="to_uv")
+            _element(transform, "matrix", value=_fmt(np.ravel(uv_matrix4(value))))
+        elif key == "texels":
+            if save_texels is None:
+                raise ValueError("a texture made from an array needs a folder for its image")
+            _element(element, "string", name="filename", value=save_texels(value))
         elif isinstance(value, bool):
             _element(element, "boolean", name=key, value=str(value).lower())
         elif isinstance(value, str):
@@ -45,10 +65,27 @@ def _write_plugin(parent: ET.Element, tag: str, plugin: dict[str, Any], name: st
             _element(element, "float", name=key, value=repr(float(value)))
 
 
-def _write_bsdf(parent: ET.Element, material: Material) -> None:
+_TEXTURES = ("bitmap", "checkerboard")
+
+
+def _save_texels(folder: Path, key: str, texels: np.ndarray) -> str:
+    """Writes an array texture's linear texels as ``<key>_texture<n>.exr`` in ``folder``;
+    returns its name relative to the XML file."""
+    from dualight import _core
+
+    n = len(list(folder.glob(f"{key}_texture*.exr")))
+    path = folder / f"{key}_texture{n}.exr"
+    data = np.ascontiguousarray(np.repeat(texels, 3, axis=2) if texels.shape[2] == 1 else texels)
+    _core.write_image(str(path), data.astype(np.float32), {})
+    return f"{folder.name}/{path.name}"
+
+
+def _write_bsdf(
+    parent: ET.Element, material: Material, save_texels: Callable[[np.ndarray], str] | None = None
+) -> None:
     if not isinstance(material, Material):
         raise TypeError(f"unknown material {type(material).__name__}")
-    _write_plugin(parent, "bsdf", material._mitsuba_bsdf())
+    _write_plugin(parent, "bsdf", material._mitsuba_bsdf(), save_texels=save_texels)
 
 
 def save_mitsuba_xml(
@@ -157,6 +194,7 @@ def save_mitsuba_xml(
             mesh.vertices.astype(np.float32),
             mesh.triangles,
             vertex_normals=mesh.normals if smooth else None,
+            visual=None if mesh.uv is None else trimesh.visual.TextureVisuals(uv=mesh.uv),
             process=False,
             validate=False,
         )
@@ -164,7 +202,7 @@ def save_mitsuba_xml(
         shape = _element(root, "shape", type="ply", id=key)
         _element(shape, "string", name="filename", value=f"{mesh_dir.name}/{ply.name}")
         _element(shape, "boolean", name="face_normals", value="false" if smooth else "true")
-        _write_bsdf(shape, mesh.material)
+        _write_bsdf(shape, mesh.material, functools.partial(_save_texels, mesh_dir, key))
         if mesh.is_emitter:
             emitter = _element(shape, "emitter", type="area")
             _element(emitter, "rgb", name="radiance", value=_fmt(mesh.emission))

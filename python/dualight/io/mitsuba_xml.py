@@ -20,6 +20,7 @@ from dualight.io._common import (
     _angle_weighted_normals,
     _existing_file,
     _loaded_normals,
+    _loaded_uv,
     _mesh_arrays,
     _trimesh_geometries,
 )
@@ -37,6 +38,7 @@ from dualight.materials import (
     TwoSided,
 )
 from dualight.scene import Camera, Scene
+from dualight.textures import Bitmap, Checkerboard, Texture
 
 __all__ = ["load_mitsuba_xml", "read_mitsuba_settings"]
 
@@ -56,6 +58,7 @@ _SUPPORTED = {
         "plastic",
         "roughplastic",
     ),
+    "texture": ("bitmap", "checkerboard"),
     "emitter": ("area (inside a shape)",),
     "sensor": ("perspective",),
     "film": ("hdrfilm",),
@@ -97,6 +100,7 @@ class _Context:
         self.folder = path.parent
         self.params = {str(k): str(v) for k, v in params.items()}
         self.defaults: dict[str, str] = {}
+        self.textures: dict[str, Texture] = {}  # top-level <texture id=...>
 
     def error(self, element: ET.Element | None, message: str) -> ValueError:
         tag = "" if element is None else f"<{element.tag}{_attrs(element)}>: "
@@ -156,6 +160,8 @@ def _vector(ctx: _Context, element: ET.Element, default: float = 0.0) -> np.ndar
 
 def _rgb_value(ctx: _Context, element: ET.Element) -> RGB:
     tag = element.tag
+    if tag in ("texture", "ref"):
+        raise ctx.error(element, "a texture is not supported here (only a colour)")
     if tag == "rgb":
         numbers = _floats(ctx, element, ctx.attr(element, "value"))
         if len(numbers) == 1:
@@ -176,6 +182,8 @@ def _rgb_value(ctx: _Context, element: ET.Element) -> RGB:
 
 
 _PROPERTY_TAGS = ("float", "integer", "boolean", "string", "rgb", "point", "vector", "spectrum")
+# Named children that give a BSDF parameter as a texture, inline or by reference.
+_TEXTURE_TAGS = ("texture", "ref")
 
 
 def _properties(
@@ -185,7 +193,8 @@ def _properties(
     -> accepted tags) and duplicates."""
     out: dict[str, ET.Element] = {}
     for child in element:
-        if child.tag not in _PROPERTY_TAGS and child.tag != "transform":
+        named_texture = child.tag in _TEXTURE_TAGS and child.get("name", "bsdf") != "bsdf"
+        if child.tag not in _PROPERTY_TAGS and child.tag != "transform" and not named_texture:
             continue
         name = child.get("name")
         if name is None:
@@ -200,7 +209,7 @@ def _properties(
             raise ctx.error(
                 child,
                 f"{what} property {name!r} must be given as {tags} (got <{child.tag}>; "
-                "spectra and textures are not supported)",
+                "spectra are not supported, textures only where they are listed)",
             )
         if name in out:
             raise ctx.error(child, f"property {name!r} is given twice")
@@ -329,31 +338,33 @@ def _apply(m: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 _RGB_OR_FLOAT = ("rgb", "float")
+_COLOUR = ("rgb", "float", *_TEXTURE_TAGS)  # a colour Mitsuba lets a texture give
 _ROUGHNESS = {
     "distribution": ("string",),
-    "alpha": ("float",),
-    "alpha_u": ("float",),
-    "alpha_v": ("float",),
+    "alpha": ("float", *_TEXTURE_TAGS),
+    "alpha_u": ("float", *_TEXTURE_TAGS),
+    "alpha_v": ("float", *_TEXTURE_TAGS),
     "sample_visible": ("boolean",),
 }
 _METAL = {"material": ("string",), "eta": _RGB_OR_FLOAT, "k": _RGB_OR_FLOAT}
 _IORS = {"int_ior": ("float", "string"), "ext_ior": ("float", "string")}
 _BSDF_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
-    "diffuse": {"reflectance": _RGB_OR_FLOAT},
-    "conductor": _METAL | {"specular_reflectance": _RGB_OR_FLOAT},
-    "roughconductor": _METAL | _ROUGHNESS | {"specular_reflectance": _RGB_OR_FLOAT},
+    "diffuse": {"reflectance": _COLOUR},
+    "conductor": _METAL | {"specular_reflectance": _COLOUR},
+    "roughconductor": _METAL | _ROUGHNESS | {"specular_reflectance": _COLOUR},
     "dielectric": _IORS
     | {"specular_reflectance": _RGB_OR_FLOAT, "specular_transmittance": _RGB_OR_FLOAT},
     "thindielectric": _IORS,
     "roughdielectric": _IORS | _ROUGHNESS,
     "plastic": _IORS
     | {
-        "diffuse_reflectance": _RGB_OR_FLOAT,
-        "specular_reflectance": _RGB_OR_FLOAT,
+        "diffuse_reflectance": _COLOUR,
+        "specular_reflectance": _COLOUR,
         "nonlinear": ("boolean",),
     },
 }
-_BSDF_PROPERTIES["roughplastic"] = _BSDF_PROPERTIES["plastic"] | _ROUGHNESS
+# Rough plastic's roughness is a number in Mitsuba (its coat's tables depend on it).
+_BSDF_PROPERTIES["roughplastic"] = _BSDF_PROPERTIES["plastic"] | _ROUGHNESS | {"alpha": ("float",)}
 
 
 def _bsdf(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:
@@ -381,15 +392,71 @@ def _bsdf(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> 
     try:
         return _BSDF_BUILDERS[kind](ctx, props)
     except (ValueError, TypeError) as exc:
+        if str(exc).startswith(repr(str(ctx.path))):
+            raise  # already names the file and the element (a texture's)
         raise ctx.error(element, str(exc)) from None
 
 
-def _rgb_or(ctx: _Context, props: Mapping[str, ET.Element], key: str, default: float) -> Any:
-    return _rgb_value(ctx, props[key]) if key in props else default
+def _rgb_or(ctx: _Context, props: Mapping[str, ET.Element], key: str, default: Any) -> Any:
+    """A colour property (a texture where one is given), or ``default``."""
+    if key not in props:
+        return default
+    element = props[key]
+    return _texture(ctx, element) if element.tag in _TEXTURE_TAGS else _rgb_value(ctx, element)
 
 
-def _number_or_none(ctx: _Context, props: Mapping[str, ET.Element], key: str) -> float | None:
-    return _number(ctx, props[key], 0.0) if key in props else None
+def _number_or_none(ctx: _Context, props: Mapping[str, ET.Element], key: str) -> Any:
+    if key not in props:
+        return None
+    element = props[key]
+    return _texture(ctx, element) if element.tag in _TEXTURE_TAGS else _number(ctx, element, 0.0)
+
+
+_TEXTURE_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
+    "bitmap": {
+        "filename": ("string",),
+        "raw": ("boolean",),
+        "filter_type": ("string",),
+        "wrap_mode": ("string",),
+        "to_uv": ("transform",),
+    },
+    "checkerboard": {"color0": _RGB_OR_FLOAT, "color1": _RGB_OR_FLOAT, "to_uv": ("transform",)},
+}
+
+
+def _texture(ctx: _Context, element: ET.Element) -> Texture:
+    """A ``<texture>`` (bitmap or checkerboard), or a ``<ref>`` to a top-level one."""
+    if element.tag == "ref":
+        key = ctx.attr(element, "id")
+        if key not in ctx.textures:
+            raise ctx.error(element, f"no texture with id {key!r} is defined before this reference")
+        return ctx.textures[key]
+    kind = ctx.attr(element, "type")
+    if kind not in _TEXTURE_PROPERTIES:
+        raise ctx.error(
+            element, f"texture type {kind!r} is not supported (supported: bitmap, checkerboard)"
+        )
+    props = _properties(ctx, element, _TEXTURE_PROPERTIES[kind], f"texture {kind!r}")
+    _no_children(ctx, element)
+    to_uv = _transform(ctx, props["to_uv"]) if "to_uv" in props else None
+    try:
+        if kind == "checkerboard":
+            return Checkerboard(
+                _rgb_or(ctx, props, "color0", 0.4), _rgb_or(ctx, props, "color1", 0.2), to_uv
+            )
+        if "filename" not in props:
+            raise ctx.error(element, 'a bitmap needs <string name="filename">')
+        return Bitmap(
+            ctx.folder / ctx.attr(props["filename"], "value"),
+            raw=_boolean(ctx, props.get("raw"), False),
+            filter_type=_string(ctx, props.get("filter_type"), "bilinear"),  # type: ignore[arg-type]
+            wrap_mode=_string(ctx, props.get("wrap_mode"), "repeat"),  # type: ignore[arg-type]
+            to_uv=to_uv,
+        )
+    except (ValueError, FileNotFoundError) as exc:
+        if isinstance(exc, ValueError) and str(exc).startswith(repr(str(ctx.path))):
+            raise
+        raise ctx.error(element, str(exc)) from None
 
 
 def _roughness_keywords(ctx: _Context, props: Mapping[str, ET.Element]) -> dict[str, Any]:
@@ -477,12 +544,14 @@ def _ior(ctx: _Context, element: ET.Element | None, default: str) -> float:
 
 
 def _no_children(ctx: _Context, element: ET.Element) -> None:
+    """Refuses children other than properties (and the named textures _properties took)."""
     for child in element:
-        if child.tag not in _PROPERTY_TAGS:
+        named_texture = child.tag in _TEXTURE_TAGS and child.get("name", "bsdf") != "bsdf"
+        if child.tag not in _PROPERTY_TAGS and child.tag != "transform" and not named_texture:
             raise ctx.error(
                 child,
                 f"<{child.tag}> inside <{element.tag} type={element.get('type')!r}> is "
-                "not supported (textures and nested plugins are not)",
+                "not supported (nested plugins are not)",
             )
 
 
@@ -522,9 +591,10 @@ def _cube() -> tuple[np.ndarray, np.ndarray]:
 
 def _file_mesh(
     ctx: _Context, element: ET.Element, kind: str, filename: str, face_normals: bool
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """Vertices, faces and shading normals (None: flat) of an OBJ/PLY shape. As in Mitsuba,
-    without ``face_normals`` the file's vertex normals are used, or smooth ones are computed."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """Vertices, faces, shading normals (None: flat) and texture coordinates (None: none) of an
+    OBJ/PLY shape. As in Mitsuba, without ``face_normals`` the file's vertex normals are used,
+    or smooth ones are computed."""
     path = ctx.folder / filename
     if not path.is_file():
         raise FileNotFoundError(
@@ -536,12 +606,14 @@ def _file_mesh(
     offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
     v = np.concatenate([p[0] for p in parts])
     f = np.concatenate([p[1] + off for p, off in zip(parts, offsets, strict=True)])
+    uvs = [_loaded_uv(g, kind) for g in geoms]
+    uv = np.concatenate(uvs) if all(u is not None for u in uvs) else None  # type: ignore[arg-type]
     if face_normals:
-        return v, f, None
+        return v, f, None, uv
     loaded = [_loaded_normals(g) for g in geoms]
     if all(n is not None for n in loaded):
-        return v, f, np.concatenate(loaded)  # type: ignore[arg-type]
-    return v, f, _angle_weighted_normals(v, f)
+        return v, f, np.concatenate(loaded), uv  # type: ignore[arg-type]
+    return v, f, _angle_weighted_normals(v, f), uv
 
 
 _SHAPE_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
@@ -606,15 +678,23 @@ def _shape(
 
     to_world = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
     normals: np.ndarray | None = None
+    uv: np.ndarray | None = None
+    if material is not None and material.textured and kind in ("cube", "sphere"):
+        raise ctx.error(
+            element,
+            f"a textured BSDF on a {kind} shape is not supported (dualight does not lay out "
+            "Mitsuba's texture coordinates on it); use a mesh with texture coordinates",
+        )
     if kind in ("obj", "ply"):
         if "filename" not in props:
             raise ctx.error(element, f'a {kind} shape needs <string name="filename">')
         filename = ctx.attr(props["filename"], "value")
         face_normals = _boolean(ctx, props.get("face_normals"), False)
-        v, f, normals = _file_mesh(ctx, element, kind, filename, face_normals)
+        v, f, normals, uv = _file_mesh(ctx, element, kind, filename, face_normals)
         label = Path(filename).stem
     elif kind == "rectangle":
         (v, f), label = _rectangle(), "rectangle"
+        uv = (v[:, :2] + 1.0) / 2.0  # Mitsuba's: (0, 0) at the corner (-1, -1)
     elif kind == "cube":
         (v, f), label = _cube(), "cube"
     else:
@@ -647,6 +727,7 @@ def _shape(
             name=name,
             degenerate="drop",
             normals=normals,
+            uv=uv,
         )
     except ValueError as exc:
         raise ctx.error(element, str(exc)) from None
@@ -838,6 +919,11 @@ def _parse(
             if key is None:
                 raise ctx.error(element, "a top-level BSDF needs an id to be referenced")
             bsdfs[ctx.substitute(element, key)] = material
+        elif tag == "texture":
+            key = element.get("id")
+            if key is None:
+                raise ctx.error(element, "a top-level texture needs an id to be referenced")
+            ctx.textures[ctx.substitute(element, key)] = _texture(ctx, element)
         elif tag == "shape":
             _shape(ctx, element, bsdfs, scene, shapes, sphere_subdivisions)
             shapes += 1
@@ -851,7 +937,7 @@ def _parse(
             raise ctx.error(
                 element,
                 "element not supported (supported at the top level: default, integrator, "
-                "sensor, bsdf, shape)",
+                "sensor, bsdf, texture, shape)",
             )
     return scene, settings
 

@@ -14,11 +14,13 @@ from dualight.io._common import (
     PathLike,
     _existing_file,
     _loaded_normals,
+    _loaded_uv,
     _mesh_arrays,
     _trimesh_geometries,
 )
 from dualight.materials import Diffuse, Material, RoughConductor, RoughPlastic
 from dualight.scene import Scene
+from dualight.textures import Bitmap, Texture
 
 __all__ = ["load_obj"]
 
@@ -26,7 +28,7 @@ __all__ = ["load_obj"]
 # Wavefront OBJ + MTL
 
 # MTL statements that change how a surface looks but that dualight does not model.
-_MTL_IGNORED = ("map_kd", "map_ke", "map_ks", "map_bump", "bump", "map_d", "ks", "tr", "d", "ni")
+_MTL_IGNORED = ("map_ke", "map_ks", "map_bump", "bump", "map_d", "ks", "tr", "d", "ni")
 
 
 def _mtl_floats(value: Any, key: str, where: str) -> RGB:
@@ -79,6 +81,8 @@ def _read_mtl_files(obj: Path, text: str) -> dict[str, dict[str, Any]]:
                     current = statement.split(maxsplit=1)[1].strip()
                 elif current in parsed:
                     parsed[current].setdefault("_statements", {})[words[0].lower()] = words[1:]
+            for props in parsed.values():
+                props["_folder"] = mtl.parent  # where its texture files are
             materials.update(parsed)
     return materials
 
@@ -158,13 +162,16 @@ def load_obj(
     the faces are split into one dualight mesh per material (``usemtl``), named
     ``"<file stem>/<material>"``. Each material becomes a :class:`~dualight.Diffuse` with the
     MTL's diffuse colour ``Kd`` and an emission (W m^-2 sr^-1, one-sided, on the
-    right-hand-rule normal's side) from its ``Ke``; a material with a specular ``Ks`` becomes
-    the nearest microfacet material instead (a :class:`~dualight.RoughPlastic` over ``Kd``,
-    or without ``Kd`` a :class:`~dualight.RoughConductor`, Beckmann roughness from ``Ns``),
+    right-hand-rule normal's side) from its ``Ke``, its ``map_Kd`` image (a
+    :class:`~dualight.Bitmap`, which replaces ``Kd``) read beside the MTL file; a material
+    with a specular ``Ks`` becomes the nearest microfacet material instead (a
+    :class:`~dualight.RoughPlastic` over ``Kd``, or without ``Kd`` a
+    :class:`~dualight.RoughConductor`, Beckmann roughness from ``Ns``),
     with a ``UserWarning`` that it is approximate. Faces without a material get
-    ``default_reflectance`` and no emission. MTL statements dualight does not model (textures
-    such as ``map_Kd``, transparency ``d``/``Tr``, ``Ni``) are ignored with a
-    ``UserWarning``; texture coordinates are not used. Vertex normals (``vn``) shade the
+    ``default_reflectance`` and no emission. MTL statements dualight does not model (other
+    texture maps, transparency ``d``/``Tr``, ``Ni``) are ignored with a
+    ``UserWarning``. Texture coordinates (``vt``) become the mesh's ``uv`` (v flipped as
+    Mitsuba reads them, so images appear upright). Vertex normals (``vn``) shade the
     mesh smoothly, as in Mitsuba and pbrt, unless ``face_normals``; faces without them are
     flat. Zero-area triangles are dropped with a warning.
 
@@ -224,7 +231,7 @@ def load_obj(
     geometries = _trimesh_geometries(obj, "obj", text)
     ignored: dict[str, list[str]] = {}
     approximated: dict[str, str] = {}
-    pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str, np.ndarray | None]] = []
+    pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str, Any, Any]] = []
     for key, geom in geometries:
         material = getattr(getattr(geom, "visual", None), "material", None)
         mname = getattr(material, "name", None)
@@ -240,12 +247,15 @@ def load_obj(
             skipped = [
                 k for k in _MTL_IGNORED if k in statements and not _neutral(k, statements[k])
             ]
+        albedo: Any = rho
+        if props is not None and statements.get("map_kd"):
+            albedo = _map_kd(statements["map_kd"], props["_folder"], where)
         try:
-            diffuse: Material = Diffuse(rho)
+            diffuse: Material = Diffuse(albedo)
         except ValueError as exc:
             raise ValueError(f"{where}: Kd: {exc}") from None
         if props is not None:
-            phong = _phong_material(rho, statements, where)
+            phong = _phong_material(albedo, statements, where)
             if phong is not None:
                 diffuse = phong
                 approximated[str(mname)] = type(phong).__name__
@@ -256,8 +266,8 @@ def load_obj(
         v, f = _mesh_arrays(geom, str(obj))
         normals = None if face_normals else _loaded_normals(geom)
         emission = (Le[0] * scale, Le[1] * scale, Le[2] * scale)
-        pending.append((v, f, diffuse, emission, name, normals))
-    for v, f, material, emission, name, normals in pending:
+        pending.append((v, f, diffuse, emission, name, normals, _loaded_uv(geom, "obj")))
+    for v, f, material, emission, name, normals, uv in pending:
         scene.add_mesh(
             v,
             f,
@@ -266,6 +276,7 @@ def load_obj(
             name=name,
             degenerate="drop",
             normals=normals,
+            uv=uv,
         )
     if approximated:
         what = ", ".join(f"{m} as {kind}" for m, kind in approximated.items())
@@ -279,14 +290,30 @@ def load_obj(
         what = "; ".join(f"{m}: {', '.join(keys)}" for m, keys in ignored.items())
         warnings.warn(
             f"{str(obj)!r}: MTL statements dualight does not model were ignored ({what}); "
-            "only Kd (diffuse), Ks and Ns (a Phong lobe) and Ke (emission) are used",
+            "only Kd and map_Kd (diffuse), Ks and Ns (a Phong lobe) and Ke (emission) are used",
             UserWarning,
             stacklevel=2,
         )
     return scene
 
 
-def _phong_material(rho: RGB, statements: dict[str, Any], where: str) -> Material | None:
+def _map_kd(words: list[str], folder: Path, where: str) -> Any:
+    """An MTL ``map_Kd`` as a :class:`~dualight.Bitmap` (the file is its last word, relative to
+    the MTL file), which replaces ``Kd`` as in pbrt (Mitsuba reads no MTL)."""
+    path = folder / words[-1]
+    if len(words) > 1:
+        warnings.warn(
+            f"{where}: map_Kd options {' '.join(words[:-1])!r} are ignored",
+            UserWarning,
+            stacklevel=4,
+        )
+    try:
+        return Bitmap(path)
+    except (ValueError, FileNotFoundError) as exc:
+        raise type(exc)(f"{where}: map_Kd: {exc}") from None
+
+
+def _phong_material(rho: Any, statements: dict[str, Any], where: str) -> Material | None:
     """The nearest dualight material to an MTL Phong lobe (``Ks`` non-zero), or None.
 
     The Phong exponent ``Ns`` becomes a Beckmann roughness ``alpha = sqrt(2 / (Ns + 2))``
@@ -310,7 +337,7 @@ def _phong_material(rho: RGB, statements: dict[str, Any], where: str) -> Materia
         return None
     spec = tuple(min(max(x, 0.0), 1.0) for x in ks)
     alpha = max(math.sqrt(2.0 / (ns + 2.0)), 1e-3)
-    if any(c > 0.0 for c in rho):
+    if isinstance(rho, Texture) or any(c > 0.0 for c in rho):
         return RoughPlastic(
             diffuse_reflectance=rho, specular_reflectance=spec, alpha=alpha, ior=1.5
         )

@@ -196,6 +196,14 @@ class HierarchicalSolver:
         progress: Callable[[int, int], None] | None,
     ) -> None:
         require_diffuse(scene)
+        textured = [m.name for m in scene.meshes if m.material.textured]
+        if textured:
+            raise ValueError(
+                f"hierarchical radiosity does not take textured reflectance (mesh "
+                f"{textured[0]!r}); use a uniform solver (radiosity.solve with method "
+                "'direct', 'jacobi', 'gauss_seidel' or 'southwell'), which averages the "
+                "texture over each patch"
+            )
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera

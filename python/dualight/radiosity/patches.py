@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -91,6 +91,52 @@ def _grid(n: int) -> tuple[np.ndarray, np.ndarray]:
     return bary, np.stack([up, down], axis=1).reshape(-1, 3)[keep].astype(np.int64)
 
 
+# Points where a textured patch's albedo is averaged: the centroids of a 4 x 4 split of the
+# patch, as barycentrics of its corners (equal areas, so the plain mean is the area mean).
+_ALBEDO_POINTS = np.array(
+    [
+        [1.0 - a - b, a, b]
+        for i in range(4)
+        for j in range(4 - i)
+        for a, b in [((i + 1 / 3) / 4, (j + 1 / 3) / 4), ((i + 2 / 3) / 4, (j + 2 / 3) / 4)][
+            : 2 if i + j <= 2 else 1
+        ]
+    ]
+)
+
+
+def _patch_uv(mesh: Any, sel: np.ndarray, corner_bary: np.ndarray) -> np.ndarray:
+    """The (u, v) of the corners of mesh triangles ``sel``'s sub-triangles (barycentrics
+    ``corner_bary``, (K, 3, 2)): (S * K, 3, 2), NaN where the mesh's reflectance is not a
+    texture. A mesh without texture coordinates uses each triangle's barycentrics, as the
+    renderers do."""
+    if not mesh.material.textured:
+        return np.full((len(sel) * len(corner_bary), 3, 2), np.nan)
+    if mesh.uv is None:
+        src = np.broadcast_to([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (len(sel), 3, 2))
+    else:
+        src = mesh.uv[mesh.triangles[sel]]  # (S, 3, 2)
+    b1, b2 = corner_bary[None, :, :, 0:1], corner_bary[None, :, :, 1:2]
+    uv = (
+        (1 - b1 - b2) * src[:, None, None, 0]
+        + b1 * src[:, None, None, 1]
+        + b2 * src[:, None, None, 2]
+    )
+    return uv.reshape(-1, 3, 2)
+
+
+def _mean_albedo(scene: Scene, mesh_index: np.ndarray, uv_corners: np.ndarray) -> np.ndarray:
+    """Each textured patch's mean albedo over its area (its texture at _ALBEDO_POINTS)."""
+    out = np.empty((len(mesh_index), 3))
+    for m in np.unique(mesh_index):
+        rows = np.nonzero(mesh_index == m)[0]
+        points = np.einsum("qk,pkc->pqc", _ALBEDO_POINTS, uv_corners[rows])  # (P, Q, 2)
+        texture = scene.meshes[m].material.reflectance
+        values = texture.eval(points.reshape(-1, 2)).reshape(len(rows), -1, 3)
+        out[rows] = values.mean(axis=1)
+    return out
+
+
 class PatchMesh:
     """The scene's triangles subdivided into patches.
 
@@ -111,8 +157,11 @@ class PatchMesh:
     areas, normals, centroids:
         Per patch, ``(N,)``, ``(N, 3)``, ``(N, 3)``.
     reflectance, emission:
-        Per patch RGB, ``(N, 3)``: the mesh's diffuse albedo and emitted radiosity
-        ``E = pi * Le`` (W m^-2).
+        Per patch RGB, ``(N, 3)``: the mesh's diffuse albedo (a texture's mean over the
+        patch) and emitted radiosity ``E = pi * Le`` (W m^-2).
+    uv_corners:
+        ``(N, 3, 2)`` the texture coordinates of each patch's corners (NaN on untextured
+        meshes), from which :meth:`Solution.render` draws textures.
     mesh_index:
         ``(N,)`` which mesh of the scene each patch comes from.
     """
@@ -153,12 +202,14 @@ class PatchMesh:
                 raise ValueError("this subdivision would make more than 50 million patches")
             subdivisions.append(per_edge)
         _check_memory(planned)
+        uv_corners: list[np.ndarray] = []  # per patch, its corners' (u, v); NaN if untextured
         for m, (mesh, per_edge) in enumerate(zip(scene.meshes, subdivisions, strict=True)):
             corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             divisions = per_edge.astype(np.int64)
             for n in np.unique(divisions):
                 bary, sub = grids.setdefault(int(n), _grid(int(n)))
                 sel = np.nonzero(divisions == n)[0]
+                uv_corners.append(_patch_uv(mesh, sel, bary[sub]))
                 c = corners[sel]  # (S, 3, 3)
                 pts = (
                     c[:, None, 0] * (1.0 - bary[:, 0] - bary[:, 1])[None, :, None]
@@ -173,12 +224,27 @@ class PatchMesh:
         self._set_triangles(
             scene, np.concatenate(vertices), np.concatenate(triangles), np.concatenate(mesh_index)
         )
+        self.uv_corners = np.concatenate(uv_corners)
+        textured = ~np.isnan(self.uv_corners[:, 0, 0])
+        if np.any(textured):
+            self.reflectance = self.reflectance.copy()
+            self.reflectance[textured] = _mean_albedo(
+                scene, self.mesh_index[textured], self.uv_corners[textured]
+            )
+
+    uv_corners: np.ndarray | None = None
 
     @classmethod
     def from_triangles(
         cls, scene: Scene, vertices: np.ndarray, triangles: np.ndarray, mesh_index: np.ndarray
     ) -> PatchMesh:
-        """Patches given directly (e.g. the leaves of a hierarchical solution)."""
+        """Patches given directly (e.g. the leaves of a hierarchical solution); textured
+        reflectance is not supported here (their place in the textures is not known)."""
+        if any(mesh.material.textured for mesh in scene.meshes):
+            raise ValueError(
+                "patches given directly cannot carry textured reflectance; subdivide the scene "
+                "with PatchMesh(scene, max_edge=...) (the uniform solvers)"
+            )
         patches = cls.__new__(cls)
         patches.max_edge = patches.max_area = None
         patches._set_triangles(scene, vertices, triangles, mesh_index)

@@ -167,6 +167,37 @@ class Solution:
         scale = float(np.percentile(seen, 99)) if seen.size else 0.0
         return np.clip(values / scale, 0.0, 1.0) if scale > 0 else np.zeros_like(values)
 
+    def _texture_scale(
+        self, idx: np.ndarray, bary: np.ndarray, visible: np.ndarray
+    ) -> np.ndarray | None:
+        """Per image sample, a textured patch's albedo at the sample over its mean albedo (1
+        elsewhere), or None when no patch is textured: radiosity's reflected light is the
+        patch's irradiance times the albedo, so the texture shows in the drawing."""
+        uv_corners = self.patches.uv_corners
+        if uv_corners is None:
+            return None
+        textured = visible & ~np.isnan(uv_corners[idx, 0, 0])
+        if not np.any(textured):
+            return None
+        scale = np.ones((*idx.shape, 3))
+        rows = idx[textured]
+        b = bary[textured]
+        corners = uv_corners[rows]
+        uv = (
+            (1 - b[:, :1] - b[:, 1:]) * corners[:, 0]
+            + b[:, :1] * corners[:, 1]
+            + b[:, 1:] * corners[:, 2]
+        )
+        albedo = np.empty((len(rows), 3))
+        meshes = self.patches.mesh_index[rows]
+        for m in np.unique(meshes):
+            pick = meshes == m
+            texture = self.patches.scene.meshes[m].material.reflectance
+            albedo[pick] = texture.eval(uv[pick])
+        mean = self.patches.reflectance[rows]
+        scale[textured] = np.divide(albedo, mean, out=np.zeros_like(albedo), where=mean > 0)
+        return scale
+
     def render(
         self,
         camera: Camera | None = None,
@@ -205,7 +236,7 @@ class Solution:
                 "computed for one view only (view_only=True)"
             )
 
-        def sample(values: np.ndarray) -> np.ndarray:
+        def sample(values: np.ndarray, scale: np.ndarray | None = None) -> np.ndarray:
             if smooth:
                 corners = self.vertex_values(values)[idx]  # H, W, S, 3, C
                 b1, b2 = bary[..., 0:1], bary[..., 1:2]
@@ -216,10 +247,17 @@ class Solution:
                 )
             else:
                 v = values[idx]
+            if scale is not None:
+                v = v * scale
             return np.where(visible[..., None], v, 0.0).mean(axis=2)
 
         if mode == "radiosity":
-            return Image(sample(self.B / np.pi), stats={"mode": mode, "method": self.method})
+            texture = self._texture_scale(idx, bary, visible)
+            if texture is None:
+                radiance = sample(self.B / np.pi)
+            else:  # emitted, plus reflected light times the albedo here over the patch's mean
+                radiance = sample(self.E / np.pi) + sample((self.B - self.E) / np.pi, texture)
+            return Image(radiance, stats={"mode": mode, "method": self.method})
         if mode == "elements":
             colours = np.random.default_rng(12345).uniform(0.15, 1.0, size=(len(self.patches), 3))
             flat = np.where(visible[..., None], colours[idx], 0.0)
