@@ -110,18 +110,25 @@ NOT_B_NORMALISED = {"mlt_flat"}
 
 # (scene, variant) pairs under test: every variant on the Cornell box; the three methods with
 # their defaults, and MLT with its flattened importance, on the caustic box and the door.
+# The flattened importance runs on the Cornell box and the door; the caustic box's run (15 s,
+# passing) left the suite for its time when issue 19 added scenes.
 CASES = [("cornell", v) for v in VARIANTS] + [
-    (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
+    (s, v)
+    for s in ("caustics", "door")
+    for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
+    if (s, v) != ("caustics", "mlt_flat")
 ]
 # Glossy and coated materials in the Metropolis methods (path-space MLT refuses the smooth
 # plastic floor: its Dirac coat over a diffuse base); block tests only. PSSMLT, which shares
 # MMLT's BDPT, passed on the glossy box too (100 % of blocks, max |t| 4.90 against 6.38; the
 # control 73 %) and is left out of the suite for its time (30 s).
+# The smooth-shaded box's MLT run (13 s; its control the albedo, see CONTROL_MATERIAL) passed
+# (8x8 blocks 100 %, max |t| 4.67 against 6.38; the control 59 %) and left the suite for its
+# time; the path, light and BDPT runs of that scene stay in test_pathspace_vs_mitsuba.py.
 MATERIAL_CASES = [
     ("glossy", "mmlt"),
     ("glossy", "mlt"),
     ("coated", "mmlt"),
-    ("smooth", "mlt"),
     ("textured", "mlt"),
 ]
 

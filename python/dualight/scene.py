@@ -163,7 +163,8 @@ class Mesh:
         ``(V, 3)`` float64 positions and ``(T, 3)`` int64 vertex indices.
     reflectance : tuple of 3 float
         The material's reflectance: the albedo of a :class:`~dualight.Diffuse`, the reflectance
-        of a :class:`~dualight.Mirror`, ``(1, 1, 1)`` for a :class:`~dualight.Dielectric`.
+        of a :class:`~dualight.Mirror`, ``(1, 1, 1)`` for a :class:`~dualight.Dielectric`; a
+        texture's mean where the material is textured.
     emission : tuple of 3 float
         Radiance leaving the front side.
     name : str
