@@ -132,7 +132,6 @@ def test_materials_check_their_textures() -> None:
     assert dualight.Diffuse(Checkerboard(0.2, 0.6)).rgb_reflectance == pytest.approx((0.4,) * 3)
     assert not dualight.Diffuse().textured
     # a texture the core BSDF has no such parameter for is refused by the compiled scene too
-    scene = dualight.Scene()
     with pytest.raises(ValueError, match="no texturable 'alpha'"):
         _core.Scene(
             np.eye(3, dtype=np.float32),
@@ -142,7 +141,6 @@ def test_materials_check_their_textures() -> None:
             np.zeros((1, 3), np.float32),
             textures=[[("alpha", Checkerboard()._core_texture())]],
         )
-    del scene
 
 
 def test_add_mesh_checks_uv() -> None:
