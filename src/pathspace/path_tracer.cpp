@@ -29,13 +29,13 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
 
 // Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
 // path's throughput beta.
-inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Frame& frame,
-                        const Vec3& wo, const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
+// World directions throughout: a Lambertian BSDF needs only the two cosines (bsdf.h).
+inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo_world,
+                        const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
   const EmitterChoice choice = scene.choose_emitter(u_select);
   LightSample ls;
   if (!sample_Li(*choice.emitter, choice.pmf, hit.p, u_light, ls)) return Color(0.f);
-  const Vec3 wi = frame.to_local(ls.wi);
-  const Color f = eval_f(bsdf, wo, wi, TransportMode::Radiance);
+  const Color f = eval_f_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
   if (is_black(f)) {
     ++counters.skipped_connections;
     return Color(0.f);
@@ -43,11 +43,11 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
   if (!shadow_ray_visible_to(scene, hit.p, hit.n, hit.prim, ls.p, ls.prim, ls.on_surface, counters)) {
     return Color(0.f);
   }
-  const float pdf_bsdf_w = pdf_w(bsdf, wo, wi, TransportMode::Radiance);
+  const float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
   // A delta-position emitter (a point light) is found by no BSDF sample: its sample keeps full
   // weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
   const float weight = is_delta_position(*choice.emitter) ? 1.f : power_heuristic(ls.pdf_w, pdf_bsdf_w);
-  return beta * f * ls.Le * (std::abs(wi.z) * weight / ls.pdf_w);
+  return beta * f * ls.Le * (std::abs(dot(ls.wi, hit.ns)) * weight / ls.pdf_w);
 }
 
 // One camera path; returns its radiance estimate.
@@ -84,7 +84,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      L += next_event(scene, hit, bsdf, frame, wo, beta, u_select, u_light, counters);
+      L += next_event(scene, hit, bsdf, wo_world, beta, u_select, u_light, counters);
     }
 
     BsdfSample bs;
