@@ -3,7 +3,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 SOURCES := $(shell find src python tests/hooks -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
 
-.PHONY: setup install demo test test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
+.PHONY: setup install demo test test-long test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
 
 setup: $(VENV)/.setup-done
 $(VENV)/.setup-done: scripts/setup.sh
@@ -33,6 +33,11 @@ cpp-test: setup
 	cmake -S . -B build/cpp-tests -DDUALIGHT_PYTHON=OFF -DBUILD_TESTING=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build build/cpp-tests -j 2
 	ctest --test-dir build/cpp-tests --output-on-failure
+
+# The checks left out of make test for its time (marker `long`: more estimators on the
+# material scenes against their Mitsuba references). About 5 minutes.
+test-long: install
+	$(PY) -m pytest -q --long -m long
 
 test-fast: install
 	$(PY) -m pytest -q -m "not slow and not mitsuba and not fuzz"

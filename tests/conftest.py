@@ -1,4 +1,4 @@
-"""Shared fixtures: small seeded scenes and a quiet render."""
+"""Shared fixtures: small seeded scenes and a quiet render; the `long` marker's option."""
 
 from __future__ import annotations
 
@@ -6,6 +6,23 @@ import numpy as np
 import pytest
 
 import dualight
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption(
+        "--long",
+        action="store_true",
+        help="also run the tests marked `long` (beyond make test's 15 minutes; make test-long)",
+    )
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    if config.getoption("--long"):
+        return
+    skip = pytest.mark.skip(reason="marked long: run with --long (make test-long)")
+    for item in items:
+        if "long" in item.keywords:
+            item.add_marker(skip)
 
 
 @pytest.fixture

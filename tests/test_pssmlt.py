@@ -110,27 +110,38 @@ NOT_B_NORMALISED = {"mlt_flat"}
 
 # (scene, variant) pairs under test: every variant on the Cornell box; the three methods with
 # their defaults, and MLT with its flattened importance, on the caustic box and the door.
-# The flattened importance runs on the Cornell box and the door; the caustic box's run (15 s,
-# passing) left the suite for its time when issue 19 added scenes.
+# The caustic box's flattened-importance run (15 s, passing) is marked long (make test-long):
+# it left make test for its time when issue 19 added scenes.
 CASES = [("cornell", v) for v in VARIANTS] + [
-    (s, v)
-    for s in ("caustics", "door")
-    for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
-    if (s, v) != ("caustics", "mlt_flat")
+    (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
 ]
-# Glossy and coated materials in the Metropolis methods (path-space MLT refuses the smooth
-# plastic floor: its Dirac coat over a diffuse base); block tests only. PSSMLT, which shares
-# MMLT's BDPT, passed on the glossy box too (100 % of blocks, max |t| 4.90 against 6.38; the
-# control 73 %) and is left out of the suite for its time (30 s).
-# The smooth-shaded box's MLT run (13 s; its control the albedo, see CONTROL_MATERIAL) passed
-# (8x8 blocks 100 %, max |t| 4.67 against 6.38; the control 59 %) and left the suite for its
-# time; the path, light and BDPT runs of that scene stay in test_pathspace_vs_mitsuba.py.
+LONG_CASES = {("caustics", "mlt_flat")}
+# Glossy, coated, smooth-shaded and textured materials in the three Metropolis methods
+# (path-space MLT refuses the coated box's smooth plastic floor: its Dirac coat over a diffuse
+# base); block tests only. make test keeps one or two methods per scene and `long` marks the
+# rest (make test-long), which run the same code as those kept: PSSMLT and MMLT share BDPT's
+# subpaths and connections.
 MATERIAL_CASES = [
     ("glossy", "mmlt"),
     ("glossy", "mlt"),
     ("coated", "mmlt"),
     ("textured", "mlt"),
+    ("glossy", "pssmlt"),
+    ("coated", "pssmlt"),
+    ("smooth", "pssmlt"),
+    ("smooth", "mmlt"),
+    ("smooth", "mlt"),
+    ("textured", "pssmlt"),
+    ("textured", "mmlt"),
 ]
+LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:])
+
+
+def _params(cases: list[tuple[str, str]], long: set[tuple[str, str]]) -> list:
+    return [
+        pytest.param(*c, id=f"{c[0]}-{c[1]}", marks=[pytest.mark.long] if c in long else [])
+        for c in cases
+    ]
 
 
 @functools.cache
@@ -182,12 +193,17 @@ def _block_test(
     return float(passed.mean()), float(t.max()), critical
 
 
-@pytest.fixture(params=CASES, ids=[f"{s}-{v}" for s, v in CASES])
+@pytest.fixture(
+    params=[
+        pytest.param(c, id=f"{c[0]}-{c[1]}", marks=[pytest.mark.long] if c in LONG_CASES else [])
+        for c in CASES
+    ]
+)
 def case(request) -> tuple[str, str]:
     return request.param
 
 
-@pytest.mark.parametrize(("scene", "variant"), MATERIAL_CASES)
+@pytest.mark.parametrize(("scene", "variant"), _params(MATERIAL_CASES, LONG_MATERIAL_CASES))
 def test_glossy_materials_block_means_match_mitsuba(scene: str, variant: str) -> None:
     runs = _runs(variant, scene_name=scene)
     passed, t_max, critical = _block_test(runs, scene, redrawn_alpha(variant))
