@@ -1152,7 +1152,7 @@ class HierarchicalSolver:
     """
     Hierarchical radiosity and importance (HSA91, SAS92); stepped.
     """
-    def __init__(self, scene: Scene, receiver_prim: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], receiver_b1: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_b2: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_weight: typing.SupportsFloat | typing.SupportsIndex, options: HierarchicalOptions, progress: typing.Any = None) -> None:
+    def __init__(self, scene: Scene, receiver_prim: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], receiver_b1: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_b2: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], receiver_weight: typing.SupportsFloat | typing.SupportsIndex, options: HierarchicalOptions, progress: typing.Any = None, albedo: typing.Any = None) -> None:
         ...
     def leaves(self) -> dict:
         ...

@@ -312,9 +312,18 @@ void bind_radiosity(py::module_& m) {
                        const py::array_t<uint32_t, py::array::c_style | py::array::forcecast>& prim,
                        const py::array_t<float, py::array::c_style | py::array::forcecast>& b1,
                        const py::array_t<float, py::array::c_style | py::array::forcecast>& b2, double weight,
-                       const HierarchicalOptions& options, const py::object& progress) {
+                       const HierarchicalOptions& options, const py::object& progress, const py::object& albedo) {
              if (prim.size() != b1.size() || prim.size() != b2.size()) {
                throw py::value_error("receiver arrays differ in length");
+             }
+             std::vector<Color> rho;
+             if (!albedo.is_none()) {
+               const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(albedo);
+               if (!a || a.ndim() != 2 || a.shape(1) != 3 || static_cast<size_t>(a.shape(0)) != scene->triangle_count()) {
+                 throw py::value_error("albedo must be an array of shape (triangles, 3)");
+               }
+               rho.reserve(scene->triangle_count());
+               for (py::ssize_t t = 0; t < a.shape(0); ++t) rho.emplace_back(a.at(t, 0), a.at(t, 1), a.at(t, 2));
              }
              ReceiverSamples r{std::vector<uint32_t>(prim.data(), prim.data() + prim.size()),
                                std::vector<float>(b1.data(), b1.data() + b1.size()),
@@ -322,7 +331,7 @@ void bind_radiosity(py::module_& m) {
              // The initial linking is O(triangles^2): interruptible, with progress per triangle.
              RenderControl control;
              auto run = run_interruptible(
-                 [&] { return std::make_unique<HierarchicalSolver>(*scene, std::move(r), options, &control); },
+                 [&] { return std::make_unique<HierarchicalSolver>(*scene, std::move(r), options, &control, rho); },
                  control, progress);
              if (run.keyboard_interrupt) {
                PyErr_SetNone(PyExc_KeyboardInterrupt);
@@ -333,7 +342,7 @@ void bind_radiosity(py::module_& m) {
            }),
            py::arg("scene"), py::arg("receiver_prim"), py::arg("receiver_b1"), py::arg("receiver_b2"),
            py::arg("receiver_weight"), py::arg("options"), py::arg("progress") = py::none(),
-           py::keep_alive<1, 2>())
+           py::arg("albedo") = py::none(), py::keep_alive<1, 2>())
       .def(
           "step",
           [](HierarchicalSolver& solver, const py::object& progress) {

@@ -36,13 +36,19 @@ void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>&
 }  // namespace
 
 HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
-                                       RenderControl* control)
+                                       RenderControl* control, const std::vector<Color>& albedo)
     : scene_(scene), receiver_(std::move(receiver)), options_(options) {
   if (!(options_.epsilon > 0.0)) throw std::invalid_argument("epsilon must be > 0");
   if (options_.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
   if (options_.sweeps < 1) throw std::invalid_argument("sweeps must be >= 1");
   require_diffuse_reflectors(scene, "hierarchical radiosity");
   roots_ = static_cast<uint32_t>(scene.triangle_count());
+  if (!albedo.empty() && albedo.size() != roots_) throw std::invalid_argument("albedo must give one colour per triangle");
+  for (const Color& a : albedo) {
+    for (int c = 0; c < 3; ++c) {
+      if (!(a[c] >= 0.f && a[c] <= 1.f)) throw std::invalid_argument("albedo must lie in [0, 1]");
+    }
+  }
   double largest = 0.0;
   elements_.reserve(roots_);
   for (uint32_t t = 0; t < roots_; ++t) {
@@ -51,7 +57,7 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     e.normal = scene.normal(t);
     e.area = scene.area(t);
     e.root = t;
-    const Color rho = diffuse_reflectance(scene.material(t).bsdf);
+    const Color rho = albedo.empty() ? diffuse_reflectance(scene.material(t).bsdf) : albedo[t];
     const Emitter* emitter = scene.emitter_at(t);
     const Color Le = emitter != nullptr ? radiance(*emitter, e.normal) : Color(0.f);
     for (int c = 0; c < 3; ++c) {

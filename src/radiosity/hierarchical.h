@@ -58,11 +58,13 @@ struct ReceiverSamples {
 
 class HierarchicalSolver {
  public:
-  // `scene` provides the input triangles (the roots) and their materials. The initial linking
+  // `scene` provides the input triangles (the roots) and their materials. `albedo`, empty or one
+  // colour in [0, 1] per input triangle, replaces the materials' albedo (a textured material's
+  // mean over each triangle: every element of a root keeps its root's). The initial linking
   // is O(triangles^2): `control` (optional) counts its rows and can cancel it, which leaves the
   // solver unusable (cancelled() true): the caller discards it.
   HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
-                     RenderControl* control = nullptr);
+                     RenderControl* control = nullptr, const std::vector<Color>& albedo = {});
 
   // One refine-and-solve iteration: refine every link the oracle flags (none on the first call),
   // then Gauss-Seidel sweeps with push-pull for radiosity and for importance.

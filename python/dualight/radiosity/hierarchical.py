@@ -56,7 +56,12 @@ from typing import Any, Literal
 import numpy as np
 
 from dualight import _core
-from dualight.radiosity.patches import PatchMesh, require_diffuse
+from dualight.radiosity.patches import (
+    PatchMesh,
+    require_diffuse,
+    sub_triangle_uv,
+    triangle_albedo,
+)
 from dualight.radiosity.solution import Solution, camera_samples
 from dualight.scene import Camera, Scene
 
@@ -196,14 +201,6 @@ class HierarchicalSolver:
         progress: Callable[[int, int], None] | None,
     ) -> None:
         require_diffuse(scene)
-        textured = [m.name for m in scene.meshes if m.material.textured]
-        if textured:
-            raise ValueError(
-                f"hierarchical radiosity does not take textured reflectance (mesh "
-                f"{textured[0]!r}); use a uniform solver (radiosity.solve with method "
-                "'direct', 'jacobi', 'gauss_seidel' or 'southwell'), which averages the "
-                "texture over each patch"
-            )
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera
@@ -215,8 +212,11 @@ class HierarchicalSolver:
         prim, b1, b2, weight = receiver_samples(
             scene, cam, window=window, seed=seed, samples_per_axis=samples_per_axis
         )
+        # A textured input triangle's albedo is its texture's mean over the triangle; its
+        # elements keep it (Solution.render draws the texture over the leaves).
+        self._albedo = triangle_albedo(scene)
         self._core = _core.HierarchicalSolver(
-            scene._compile(), prim, b1, b2, weight, options, progress
+            scene._compile(), prim, b1, b2, weight, options, progress, albedo=self._albedo
         )
         self.setup_seconds = time.perf_counter() - start
         self.history: list[HierarchicalStep] = []
@@ -269,11 +269,21 @@ class HierarchicalSolver:
         leaves = self._core.leaves()
         _, _, mesh_of_triangle = self.scene.triangle_arrays()
         n = len(leaves["area"])
+        vertices = leaves["vertices"].reshape(-1, 3).astype(np.float64)
+        textured = {}
+        if self._albedo is not None:
+            textured = {
+                "uv_corners": sub_triangle_uv(
+                    self.scene, leaves["root"], vertices.reshape(n, 3, 3)
+                ),
+                "reflectance": self._albedo[leaves["root"]],
+            }
         patches = PatchMesh.from_triangles(
             self.scene,
-            leaves["vertices"].reshape(-1, 3).astype(np.float64),
+            vertices,
             np.arange(3 * n).reshape(n, 3),
             mesh_of_triangle[leaves["root"]],
+            **textured,
         )
         area = leaves["area"]
         last = self.history[-1] if self.history else None

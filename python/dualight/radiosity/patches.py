@@ -91,18 +91,27 @@ def _grid(n: int) -> tuple[np.ndarray, np.ndarray]:
     return bary, np.stack([up, down], axis=1).reshape(-1, 3)[keep].astype(np.int64)
 
 
-# Points where a textured patch's albedo is averaged: the centroids of a 4 x 4 split of the
-# patch, as barycentrics of its corners (equal areas, so the plain mean is the area mean).
-_ALBEDO_POINTS = np.array(
-    [
-        [1.0 - a - b, a, b]
-        for i in range(4)
-        for j in range(4 - i)
-        for a, b in [((i + 1 / 3) / 4, (j + 1 / 3) / 4), ((i + 2 / 3) / 4, (j + 2 / 3) / 4)][
-            : 2 if i + j <= 2 else 1
+def _albedo_points(n: int) -> np.ndarray:
+    """Points where a textured patch's albedo is averaged: the centroids of an n x n split of
+    the patch (n^2 sub-triangles), as barycentrics of its corners (equal areas, so the plain
+    mean is the area mean)."""
+    return np.array(
+        [
+            [1.0 - a - b, a, b]
+            for i in range(n)
+            for j in range(n - i)
+            for a, b in [((i + 1 / 3) / n, (j + 1 / 3) / n), ((i + 2 / 3) / n, (j + 2 / 3) / n)][
+                : 2 if i + j <= n - 2 else 1
+            ]
         ]
-    ]
-)
+    )
+
+
+# Patches of the uniform solvers: 16 points each. Hierarchical radiosity's input triangles,
+# larger and whose elements all keep their root's albedo: up to 4096 each (a checkerboard's
+# edge crossing a triangle moved its 256-point mean by 0.03), about 4 million in all.
+_ALBEDO_POINTS = _albedo_points(4)
+_ROOT_POINTS_IN_ALL = 4_000_000
 
 
 def _patch_uv(mesh: Any, sel: np.ndarray, corner_bary: np.ndarray) -> np.ndarray:
@@ -125,15 +134,73 @@ def _patch_uv(mesh: Any, sel: np.ndarray, corner_bary: np.ndarray) -> np.ndarray
     return uv.reshape(-1, 3, 2)
 
 
-def _mean_albedo(scene: Scene, mesh_index: np.ndarray, uv_corners: np.ndarray) -> np.ndarray:
-    """Each textured patch's mean albedo over its area (its texture at _ALBEDO_POINTS)."""
+def _mean_albedo(
+    scene: Scene,
+    mesh_index: np.ndarray,
+    uv_corners: np.ndarray,
+    at: np.ndarray = _ALBEDO_POINTS,
+) -> np.ndarray:
+    """Each textured patch's mean albedo over its area (its texture at the points ``at``)."""
     out = np.empty((len(mesh_index), 3))
     for m in np.unique(mesh_index):
         rows = np.nonzero(mesh_index == m)[0]
-        points = np.einsum("qk,pkc->pqc", _ALBEDO_POINTS, uv_corners[rows])  # (P, Q, 2)
+        points = np.einsum("qk,pkc->pqc", at, uv_corners[rows])  # (P, Q, 2)
         texture = scene.meshes[m].material.reflectance
         values = texture.eval(points.reshape(-1, 2)).reshape(len(rows), -1, 3)
         out[rows] = values.mean(axis=1)
+    return out
+
+
+def triangle_albedo(scene: Scene) -> np.ndarray | None:
+    """Per triangle of the compiled scene, ``(T, 3)``: its mesh's albedo, a texture's mean over
+    the triangle where the mesh is textured (hierarchical radiosity's roots); None when no mesh
+    is textured."""
+    if not any(mesh.material.textured for mesh in scene.meshes):
+        return None
+    identity = np.array([[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]])
+    textured = sum(len(m.triangles) for m in scene.meshes if m.material.textured)
+    at = _albedo_points(int(np.clip(np.sqrt(_ROOT_POINTS_IN_ALL / textured), 4, 64)))
+    out = []
+    for m, mesh in enumerate(scene.meshes):
+        rows = np.broadcast_to(np.asarray(mesh.reflectance, np.float64), (len(mesh.triangles), 3))
+        if mesh.material.textured:
+            uv = _patch_uv(mesh, np.arange(len(mesh.triangles)), identity)
+            rows = _mean_albedo(scene, np.full(len(rows), m), uv, at)
+        out.append(rows)
+    return np.concatenate(out)
+
+
+def sub_triangle_uv(scene: Scene, root: np.ndarray, vertices: np.ndarray) -> np.ndarray:
+    """The (u, v) of the corners ``vertices`` ``(N, 3, 3)`` of sub-triangles of the compiled
+    scene's triangles ``root`` ``(N,)`` (hierarchical radiosity's leaves): ``(N, 3, 2)``, NaN
+    where the mesh is not textured."""
+    positions, triangles, mesh_of = scene.triangle_arrays()
+    first = np.cumsum([0] + [len(m.triangles) for m in scene.meshes[:-1]])
+    corners = positions[triangles[root]]  # (N, 3, 3)
+    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    d = vertices - corners[:, None, 0]  # (N, 3 corners, 3)
+    g = np.stack([np.einsum("nj,nj->n", a, b) for a in (e1, e2) for b in (e1, e2)], 1)
+    r1, r2 = np.einsum("nkj,nj->nk", d, e1), np.einsum("nkj,nj->nk", d, e2)
+    det = g[:, 0] * g[:, 3] - g[:, 1] * g[:, 2]
+    b1 = (g[:, None, 3] * r1 - g[:, None, 1] * r2) / det[:, None]
+    b2 = (g[:, None, 0] * r2 - g[:, None, 2] * r1) / det[:, None]
+    bary = np.stack([b1, b2], axis=-1)  # (N, 3, 2)
+    out = np.full((len(root), 3, 2), np.nan)
+    for m in np.unique(mesh_of[root]):
+        mesh = scene.meshes[m]
+        if not mesh.material.textured:
+            continue
+        pick = np.nonzero(mesh_of[root] == m)[0]
+        if mesh.uv is None:
+            src = np.broadcast_to([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (len(pick), 3, 2))
+        else:
+            src = mesh.uv[mesh.triangles[root[pick] - first[m]]]  # (P, 3, 2)
+        b = bary[pick]  # (P, 3 corners, 2)
+        out[pick] = (
+            (1 - b[..., :1] - b[..., 1:]) * src[:, None, 0]
+            + b[..., :1] * src[:, None, 1]
+            + b[..., 1:] * src[:, None, 2]
+        )
     return out
 
 
@@ -236,18 +303,31 @@ class PatchMesh:
 
     @classmethod
     def from_triangles(
-        cls, scene: Scene, vertices: np.ndarray, triangles: np.ndarray, mesh_index: np.ndarray
+        cls,
+        scene: Scene,
+        vertices: np.ndarray,
+        triangles: np.ndarray,
+        mesh_index: np.ndarray,
+        *,
+        uv_corners: np.ndarray | None = None,
+        reflectance: np.ndarray | None = None,
     ) -> PatchMesh:
-        """Patches given directly (e.g. the leaves of a hierarchical solution); textured
-        reflectance is not supported here (their place in the textures is not known)."""
-        if any(mesh.material.textured for mesh in scene.meshes):
+        """Patches given directly (e.g. the leaves of a hierarchical solution). Where meshes
+        are textured, ``uv_corners`` ``(N, 3, 2)`` places each patch in its texture (NaN rows
+        for untextured patches) and ``reflectance`` ``(N, 3)`` gives the albedo the solver used
+        for it (a texture's mean over its patch or over the input triangle it lies in)."""
+        textured = any(mesh.material.textured for mesh in scene.meshes)
+        if textured and (uv_corners is None or reflectance is None):
             raise ValueError(
-                "patches given directly cannot carry textured reflectance; subdivide the scene "
-                "with PatchMesh(scene, max_edge=...) (the uniform solvers)"
+                "patches of textured meshes need uv_corners and reflectance (where each patch "
+                "lies in its texture, and the albedo its solver used)"
             )
         patches = cls.__new__(cls)
         patches.max_edge = patches.max_area = None
         patches._set_triangles(scene, vertices, triangles, mesh_index)
+        if textured:
+            patches.uv_corners = np.asarray(uv_corners, np.float64).reshape(len(patches), 3, 2)
+            patches.reflectance = np.asarray(reflectance, np.float64).reshape(len(patches), 3)
         return patches
 
     def _set_triangles(
