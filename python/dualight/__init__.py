@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import io, materials, metrics, radiosity, scenes, textures
+from dualight import emitters, io, materials, metrics, radiosity, scenes, textures
+from dualight.emitters import PointLight, SpotLight
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import (
@@ -54,13 +55,16 @@ __all__ = [
     "Mesh",
     "Mirror",
     "Plastic",
+    "PointLight",
     "RoughConductor",
     "RoughDielectric",
     "RoughPlastic",
     "Scene",
+    "SpotLight",
     "ThinDielectric",
     "TwoSided",
     "__version__",
+    "emitters",
     "io",
     "load_mitsuba_xml",
     "load_obj",

@@ -6,14 +6,14 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
     """
-    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, uvs: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, textures: collections.abc.Sequence[collections.abc.Sequence[tuple[str, ...]]] | None = None) -> None:
+    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, uvs: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, textures: collections.abc.Sequence[collections.abc.Sequence[tuple[str, ...]]] | None = None, emitters: collections.abc.Sequence[...] | None = None) -> None:
         """
-        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface coordinates, one row per position (NaN for meshes without). textures: per material, a list of (BSDF parameter name, Texture).
+        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface coordinates, one row per position (NaN for meshes without). textures: per material, a list of (BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter).
         """
     def encloses(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> bool:
         """
@@ -255,6 +255,25 @@ class Texture:
     @property
     def mean(self) -> typing.Annotated[list[float], "FixedSize(3)"]:
         ...
+class Emitter:
+    """
+    An emitter without a surface (built by dualight.PointLight, SpotLight).
+    """
+    @staticmethod
+    def point(position: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], intensity: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> Emitter:
+        """
+        Isotropic point light: intensity in W/sr per channel.
+        """
+    @staticmethod
+    def spot(position: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], direction: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], intensity: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], cutoff_angle: typing.SupportsFloat | typing.SupportsIndex, beam_width: typing.SupportsFloat | typing.SupportsIndex) -> Emitter:
+        """
+        Spot light (Mitsuba 3's spot): angles in degrees, intensity on the axis in W/sr.
+        """
+    @property
+    def power(self) -> float:
+        """
+        Flux / pi (the weight of the scene's light choice).
+        """
 class Film:
     """
     A film's totals, to merge the tasks of a split render: add each task's accumulators (render_*(..., accumulators=True)) in block order, then read mean() and variance(), computed as a single render computes them.

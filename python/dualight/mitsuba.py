@@ -346,6 +346,8 @@ def scene_dict(
     for mesh in scene.meshes:
         key = _key(mesh.name, used)
         out[key] = _mesh(mesh, key)
+    for i, emitter in enumerate(scene.emitters):  # mesh keys start with "mesh_"
+        out[f"emitter_{i}"] = emitter._mitsuba()
     return out
 
 

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Literal, ParamSpec, TypeVar
 
 import numpy as np
 
+from dualight.emitters import PointLight, SpotLight
 from dualight.materials import Diffuse, Material
 
 if TYPE_CHECKING:
@@ -353,6 +354,7 @@ class Scene:
             raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
         self._camera = camera
         self._meshes: list[Mesh] = []
+        self._emitters: list[PointLight | SpotLight] = []
         self._compiled: _core.Scene | None = None
         # Camera origins (None: no camera) the emitters were checked against (render time).
         self._checked_facing: set[Vec3 | None] = set()
@@ -369,7 +371,7 @@ class Scene:
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
-        self.__dict__.update({"_checked_facing": set(), **state})
+        self.__dict__.update({"_checked_facing": set(), "_emitters": [], **state})
         self._lock = threading.Lock()
         self._users = 0
         for mesh in self._meshes:
@@ -401,9 +403,30 @@ class Scene:
         return sum(len(m.triangles) for m in self._meshes)
 
     @property
+    def emitters(self) -> tuple[PointLight | SpotLight, ...]:
+        """The emitters without a surface (point and spot lights) in the order they were
+        added; area lights are the meshes with emission."""
+        return tuple(self._emitters)
+
+    @property
     def has_emitters(self) -> bool:
-        """Whether some mesh emits."""
-        return any(m.is_emitter for m in self._meshes)
+        """Whether some mesh emits or the scene has a point or spot light."""
+        return bool(self._emitters) or any(m.is_emitter for m in self._meshes)
+
+    def add_emitter(self, emitter: PointLight | SpotLight) -> int:
+        """Add a point or spot light (:mod:`dualight.emitters`); returns its index in
+        :attr:`emitters`. Radiosity refuses scenes with them (it takes emission from patches
+        only)."""
+        if not isinstance(emitter, PointLight | SpotLight):
+            raise TypeError(
+                "emitter must be a dualight.PointLight or dualight.SpotLight, got "
+                f"{type(emitter).__name__} (area lights are meshes with emission)"
+            )
+        with self._lock:
+            self._refuse_while_in_use("add_emitter")
+            self._emitters.append(emitter)
+            self._compiled = None
+            return len(self._emitters) - 1
 
     @property
     def has_specular(self) -> bool:
@@ -600,7 +623,10 @@ class Scene:
         if not self._meshes:
             raise ValueError("scene is empty: add a mesh with Scene.add_mesh")
         if not self.has_emitters:
-            raise ValueError("scene has no emitter: give some mesh a positive emission")
+            raise ValueError(
+                "scene has no emitter: give some mesh a positive emission or add a light "
+                "with Scene.add_emitter"
+            )
         if self._camera is None and camera is None:
             raise ValueError("scene has no camera: pass camera=dualight.Camera(...)")
         lo, hi = self.bounds()
@@ -668,6 +694,7 @@ class Scene:
                 normals=self._vertex_normals(),
                 uvs=self._vertex_uvs(),
                 textures=self._material_textures(),
+                emitters=[e._core_emitter() for e in self._emitters] or None,
             )
         return self._compiled
 

@@ -18,6 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from dualight.emitters import PointLight, SpotLight
 from dualight.materials import (
     Conductor,
     Dielectric,
@@ -115,7 +116,26 @@ def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
 CORNELL_MIRROR_SPHERE = ((370.0, 95.0, 370.0), 95.0)
 CORNELL_GLASS_SPHERE = ((180.0, 95.0, 165.0), 95.0)
 _CORNELL_SPHERE_SUBDIVISIONS = 5
-CORNELL_VARIANTS = ("classic", "caustics", "glossy", "coated", "smooth", "textured")
+CORNELL_VARIANTS = (
+    "classic",
+    "caustics",
+    "glossy",
+    "coated",
+    "smooth",
+    "textured",
+    "point",
+    "spot",
+)
+# The "point" and "spot" variants' lights, below the ceiling light's centre (which stays, not
+# emitting): the point light 100 mm below it (closer, the ceiling's 1 / r^2 hot spot made the
+# path tracer's estimates heavy-tailed), the spot 10 mm below, shining down. The point light's
+# flux is the area light's (intensity = area x radiance / 4); the spot's intensity is the
+# point's times 4 / (2 (1 - cos cutoff)), so it sends about the same flux into its cone,
+# which leans towards the red wall and the back.
+_CORNELL_POINT_POSITION = (278.0, 448.7, 279.5)
+_CORNELL_SPOT_POSITION = (278.0, 538.7, 279.5)
+_CORNELL_POINT_INTENSITY = tuple(130.0 * 105.0 * c / 4.0 for c in CORNELL_LIGHT_RADIANCE)
+_CORNELL_SPOT_AXIS = (0.25, -1.0, 0.15)
 # The "smooth" variant's spheres: coarse (320 triangles) so that shading normals matter.
 _CORNELL_SMOOTH_SUBDIVISIONS = 2
 
@@ -130,6 +150,7 @@ def cornell_box(
     roughness_scale: float = 1.0,
     sphere_normals: bool = True,
     texture_shift: float = 0.0,
+    spot_cutoff: float = 50.0,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
@@ -172,7 +193,11 @@ def cornell_box(
         coordinates (each quad spans the unit square of ``(u, v)``): a 16 x 16 bitmap on the
         back wall (bilinear), a checkerboard floor (4 x 4 squares), and the tall block a
         :class:`~dualight.RoughConductor` of Mitsuba's aluminium whose GGX roughness is a
-        checkerboard of 0.05 and 0.35.
+        checkerboard of 0.05 and 0.35. ``"point"`` and ``"spot"``: the classic box lit by a
+        :class:`~dualight.PointLight` (of the area light's flux) or a
+        :class:`~dualight.SpotLight` (cutoff ``spot_cutoff`` degrees, beam width three
+        quarters of it, leaning towards the red wall and the back) 100 mm and 10 mm below the
+        ceiling light's centre, which stays as a non-emitting patch.
     ior : float, optional
         The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
         the material accepts).
@@ -185,6 +210,8 @@ def cornell_box(
     texture_shift : float, optional
         Moves every texture of the ``"textured"`` variant along ``u`` by this much (1/32:
         half a texel of the back wall; a negative control), finite.
+    spot_cutoff : float, optional
+        The ``"spot"`` variant's cutoff angle in degrees, in (0, 90].
 
     Returns
     -------
@@ -217,8 +244,10 @@ def cornell_box(
         raise ValueError(f"cornell_box: roughness_scale must be in (0, 4], got {roughness_scale!r}")
     if not math.isfinite(float(texture_shift)):
         raise ValueError(f"cornell_box: texture_shift must be finite, got {texture_shift!r}")
+    if not 0.0 < float(spot_cutoff) <= 90.0:
+        raise ValueError(f"cornell_box: spot_cutoff must be in (0, 90], got {spot_cutoff!r}")
     textures = _cornell_textures(float(texture_shift)) if variant == "textured" else {}
-    spheres = variant not in ("classic", "textured")
+    spheres = variant not in ("classic", "textured", "point", "spot")
     if variant == "glossy":
         a = float(roughness_scale)
         sphere_materials: tuple[Material, Material] = (
@@ -291,13 +320,30 @@ def cornell_box(
             scene.add_mesh(v, f, material=material, name=name)
     light = _orient(np.array(_CORNELL_LIGHT), _CORNELL_ROOM_CENTRE, inward=True)
     v, f = _quads_mesh([light])
+    point_lit = variant in ("point", "spot")
     scene.add_mesh(
         v,
         f,
         reflectance=CORNELL_LIGHT_REFLECTANCE,
-        emission=tuple(light_scale * c for c in CORNELL_LIGHT_RADIANCE),
+        emission=(0.0, 0.0, 0.0)
+        if point_lit
+        else tuple(light_scale * c for c in CORNELL_LIGHT_RADIANCE),
         name="light",
     )
+    intensity = tuple(light_scale * c for c in _CORNELL_POINT_INTENSITY)
+    if variant == "point":
+        scene.add_emitter(PointLight(_CORNELL_POINT_POSITION, intensity))
+    elif variant == "spot":
+        cutoff = float(spot_cutoff)
+        gain = 4.0 / (2.0 * (1.0 - math.cos(math.radians(cutoff))))
+        scene.add_emitter(
+            SpotLight(
+                _CORNELL_SPOT_POSITION,
+                _CORNELL_SPOT_AXIS,
+                tuple(gain * c for c in intensity),
+                cutoff_angle=cutoff,
+            )
+        )
     return scene
 
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "bindings/emitters.h"
 #include "bindings/materials.h"
 #include "bindings/numpy_util.h"
 #include "bindings/textures.h"
@@ -47,7 +48,8 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                                   const std::optional<FloatArray>& ior,
                                   const std::optional<std::vector<BsdfObject>>& bsdfs,
                                   const std::optional<FloatArray>& normals, const std::optional<FloatArray>& uvs,
-                                  const std::optional<std::vector<MaterialTextures>>& textures) {
+                                  const std::optional<std::vector<MaterialTextures>>& textures,
+                                  const std::optional<std::vector<EmitterObject>>& emitters) {
   std::vector<float> p = rows_of(positions, 3, "positions");
   std::vector<float> ns = normals ? rows_of(*normals, 3, "normals") : std::vector<float>{};
   if (normals && ns.size() != p.size()) throw py::value_error("normals needs one row per position");
@@ -79,9 +81,13 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
   if (textures) add_textures(*textures, materials);
+  std::vector<Emitter> lights;
+  if (emitters) {
+    for (const EmitterObject& e : *emitters) lights.push_back(e.emitter);
+  }
   py::gil_scoped_release release;  // the BVH build can take a while on large meshes
   return std::make_shared<Scene>(std::move(p), std::move(t), std::move(m), std::move(materials),
-                                 std::vector<Emitter>{}, std::move(ns), std::move(uv));
+                                 std::move(lights), std::move(ns), std::move(uv));
 }
 
 }  // namespace
@@ -92,14 +98,14 @@ void bind_geometry(py::module_& m) {
       .def(py::init(&make_scene), py::arg("positions"), py::arg("triangles"), py::arg("material_of"),
            py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
            py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(), py::arg("normals") = py::none(),
-           py::arg("uvs") = py::none(), py::arg("textures") = py::none(),
+           py::arg("uvs") = py::none(), py::arg("textures") = py::none(), py::arg("emitters") = py::none(),
            "Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one "
            "dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a "
            "dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse "
            "albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a "
            "triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface "
            "coordinates, one row per position (NaN for meshes without). textures: per material, a list of "
-           "(BSDF parameter name, Texture).")
+           "(BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter).")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly(

@@ -7,6 +7,7 @@ namespace dualight::bindings {
 void bind_geometry(py::module_& m);
 void bind_materials(py::module_& m);
 void bind_textures(py::module_& m);
+void bind_emitters(py::module_& m);
 void bind_film(py::module_& m);
 void bind_pathspace(py::module_& m);
 void bind_mlt(py::module_& m);
@@ -19,6 +20,7 @@ PYBIND11_MODULE(_core, m) {
   dualight::bindings::bind_geometry(m);
   dualight::bindings::bind_materials(m);
   dualight::bindings::bind_textures(m);
+  dualight::bindings::bind_emitters(m);
   dualight::bindings::bind_film(m);
   dualight::bindings::bind_pathspace(m);
   dualight::bindings::bind_mlt(m);

@@ -37,6 +37,23 @@ inline Point2 square_to_uniform_triangle(Point2 p) {
   return {p.v * su, 1.f - su};
 }
 
+// Uniform directions on the unit sphere (z uniform in [-1, 1], Archimedes), density 1 / (4 pi).
+inline Vec3 square_to_uniform_sphere(Point2 p) {
+  const float z = 1.f - 2.f * p.v;
+  const float r = std::sqrt(std::max(0.f, 1.f - z * z)), phi = 2.f * kPi * p.u;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float kUniformSpherePdf = 0.25f * kInvPi;
+
+// Uniform directions in the cone of half-angle acos(cos_max) around +z, density
+// 1 / (2 pi (1 - cos_max)).
+inline Vec3 square_to_uniform_cone(Point2 p, float cos_max) {
+  const float z = 1.f - p.v * (1.f - cos_max);
+  const float r = std::sqrt(std::max(0.f, 1.f - z * z)), phi = 2.f * kPi * p.u;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniform_cone_pdf(float cos_max) { return 0.5f * kInvPi / (1.f - cos_max); }
+
 // [Veach 1997, eq. 9.13] with beta = 2; pdfs of one sample per technique.
 inline float power_heuristic(float pdf_a, float pdf_b) {
   const float a2 = pdf_a * pdf_a, b2 = pdf_b * pdf_b;

@@ -15,10 +15,12 @@
 #include <variant>
 
 #include "lights/area_emitter.h"
+#include "lights/point_emitter.h"
+#include "lights/spot_emitter.h"
 
 namespace dualight {
 
-using Emitter = std::variant<AreaEmitter>;
+using Emitter = std::variant<AreaEmitter, PointEmitter, SpotEmitter>;
 
 inline EmitterFlags flags(const Emitter& e) {
   return std::visit([](const auto& x) { return flags(x); }, e);

@@ -88,8 +88,9 @@ TEST_CASE("verify_accepts_the_walks_and_catches_tampering") {
 
 namespace {
 
-// The closed box with a mirror quad standing in it, so that paths have delta vertices.
-Scene box_with_mirror() {
+// The closed box with a mirror quad standing in it, so that paths have delta vertices; with
+// `lights`, also the emitters without a surface.
+Scene box_with_mirror(std::vector<Emitter> lights = {}) {
   std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
   std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
                              3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
@@ -105,15 +106,72 @@ Scene box_with_mirror() {
   add({0.2f, 0.1f, 0.8f, 0.8f, 0.1f, 0.8f, 0.8f, 0.7f, 0.6f, 0.2f, 0.7f, 0.6f}, 2);  // tilted mirror
   return Scene(std::move(p), std::move(t), std::move(m),
                {Material{Lambertian{Color(0.6f)}, Color(0.f)}, Material{Lambertian{Color(0.3f)}, Color(4.f)},
-                Material{Mirror{Color(0.9f)}, Color(0.f)}});
+                Material{Mirror{Color(0.9f)}, Color(0.f)}},
+               std::move(lights));
+}
+
+}  // namespace
+
+namespace {
+
+struct StrategySum {
+  float sum = 0.f;
+  bool any_delta = false;  // some strategy was left out for connecting at a delta vertex
+};
+
+// The MIS weights of the strategies (s, t = n - s) that can make the complete path `full`
+// (x_0 the camera .. x_k on an emitter), each given the subpaths it would have drawn, with
+// densities recomputed from positions in both directions. A point emitter's x_k (at_point)
+// cannot be hit: no s = 0 strategy, and its camera-side density is 0.
+StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeuristic heuristic) {
+  const size_t n = full.size(), k = n - 1;
+  const bool point = full[k].at_point;
+  std::vector<float> p_cam(n, 0.f), p_light(n, 0.f);
+  for (size_t j = 1; j < n; ++j) {
+    if (full[j - 1].delta || (point && j == k)) continue;
+    p_cam[j] = pdf_area(kCamera, full[j - 1], j >= 2 ? &full[j - 2] : nullptr, full[j]);
+  }
+  Vertex origin = full[k];
+  origin.type = VertexType::Light;
+  p_light[k] = pdf_light_origin(scene, origin);
+  p_light[k - 1] = pdf_light(origin, full[k - 1]);
+  for (size_t j = 0; j + 2 < n; ++j) {
+    if (!full[j + 1].delta) p_light[j] = pdf_area(kCamera, full[j + 1], &full[j + 2], full[j]);
+  }
+  StrategySum out;
+  for (size_t t = 1; t <= n; ++t) {
+    const size_t s = n - t;
+    if ((s == 1 && t == 1) || (s == 0 && point)) continue;
+    Path cam(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(t)), light;
+    for (size_t j = 0; j < t; ++j) {
+      cam[j].pdf_fwd = p_cam[j];
+      cam[j].pdf_rev = p_light[j];
+    }
+    for (size_t j = 0; j < s; ++j) {
+      Vertex v = full[k - j];
+      v.pdf_fwd = p_light[k - j];
+      v.pdf_rev = p_cam[k - j];
+      if (j == 0) v.type = VertexType::Light;
+      light.push_back(v);
+    }
+    // Strategies that would connect at a delta vertex cannot make the path.
+    if ((t >= 2 && full[t - 1].delta) || (s >= 1 && full[k + 1 - s].delta)) {
+      out.any_delta = true;
+      continue;
+    }
+    const Vertex sampled = s == 1 ? light[0] : Vertex{};
+    Vertex cam_vertex = full[0];
+    out.sum += mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
+                          static_cast<int>(t), heuristic);
+  }
+  return out;
 }
 
 }  // namespace
 
 TEST_CASE("mis_weights_of_all_strategies_sum_to_one") {
-  // For a complete path x_0 (camera) .. x_k (on an emitter), build the subpaths every strategy
-  // (s, t = k + 1 - s) would have drawn, with densities recomputed from positions in both
-  // directions, and check that the weights of the strategies that can make the path sum to 1.
+  // For a complete path x_0 (camera) .. x_k (on an emitter), the weights of the strategies
+  // that can make it sum to 1.
   const Scene scene = box_with_mirror();
   const WalkLimits limits{7, 1 << 30};
   TraceCounters rays;
@@ -125,51 +183,53 @@ TEST_CASE("mis_weights_of_all_strategies_sum_to_one") {
     camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
     for (size_t k = 2; k < path.size(); ++k) {
       if (!path[k].is_emitter() || dot(path[k].n, path[k - 1].p - path[k].p) <= 0.f) continue;
-      const size_t n = k + 1;
-      // Densities of each vertex from the camera side and from the emitter side.
-      std::vector<float> p_cam(n, 0.f), p_light(n, 0.f);
-      for (size_t j = 1; j < n; ++j) {
-        if (!path[j - 1].delta) p_cam[j] = pdf_area(kCamera, path[j - 1], j >= 2 ? &path[j - 2] : nullptr, path[j]);
-      }
-      Vertex origin = path[k];
-      origin.type = VertexType::Light;
-      p_light[k] = pdf_light_origin(scene, origin);
-      p_light[k - 1] = pdf_light(origin, path[k - 1]);
-      for (size_t j = 0; j + 2 < n; ++j) {
-        if (!path[j + 1].delta) p_light[j] = pdf_area(kCamera, path[j + 1], &path[j + 2], path[j]);
-      }
-      float sum = 0.f;
-      bool any_delta = false;
-      for (size_t t = 1; t <= n; ++t) {
-        const size_t s = n - t;
-        if (s == 1 && t == 1) continue;
-        Path cam(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(t)), light;
-        for (size_t j = 0; j < t; ++j) {
-          cam[j].pdf_fwd = p_cam[j];
-          cam[j].pdf_rev = p_light[j];
-        }
-        for (size_t j = 0; j < s; ++j) {
-          Vertex v = path[k - j];
-          v.pdf_fwd = p_light[k - j];
-          v.pdf_rev = p_cam[k - j];
-          if (j == 0) v.type = VertexType::Light;
-          light.push_back(v);
-        }
-        // Strategies that would connect at a delta vertex cannot make the path.
-        if ((t >= 2 && path[t - 1].delta) || (s >= 1 && path[k + 1 - s].delta)) {
-          any_delta = true;
-          continue;
-        }
-        const Vertex sampled = s == 1 ? light[0] : Vertex{};
-        Vertex cam_vertex = path[0];
-        sum += mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
-                          static_cast<int>(t), (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
-      }
-      CHECK_NEAR(sum, 1.f, 2e-4f);
+      const Path full(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(k + 1));
+      const StrategySum r =
+          strategy_weight_sum(scene, full, (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
+      CHECK_NEAR(r.sum, 1.f, 2e-4f);
       ++checked;
-      with_delta += any_delta;
+      with_delta += r.any_delta;
     }
   }
   CHECK(checked >= 100);
   CHECK(with_delta >= 10);
+}
+
+TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_point_and_spot_lights") {
+  // A camera subpath x_0 .. x_{k-1} (its last vertex not a delta one) closed by a point or spot
+  // light x_k: no strategy with s = 0 can make it (no path hits a point), and the weights of
+  // those with s >= 1 must sum to 1 (the point's "area density" is the choice's probability,
+  // no cosine at it).
+  constexpr float kDeg = kPi / 180.f;
+  const Scene scene = box_with_mirror(
+      {PointEmitter{Vec3(0.5f, 0.85f, 0.5f), Color(0.3f)},
+       make_spot(Vec3(0.4f, 0.8f, 0.6f), Vec3(0.1f, -1.f, 0.f), Color(0.8f), 70.f * kDeg, 50.f * kDeg)});
+  const WalkLimits limits{6, 1 << 30};
+  TraceCounters rays;
+  Path path;
+  size_t checked = 0;
+  for (uint32_t i = 0; i < 2000 && checked < 300; ++i) {
+    IndependentSampler sampler(9, 1, i);
+    const Point2 u = sampler.next_2d();
+    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+    const size_t first_light = scene.emitter_count() - 2;
+    for (size_t k = 2; k <= path.size(); ++k) {
+      if (path[k - 1].delta || path[k - 1].type != VertexType::Surface) continue;
+      const Emitter& e = scene.emitters()[first_light + (i + k) % 2];
+      const Vec3 at = sample_Le_position(e, 1.f, {0.5f, 0.5f}).p;
+      if (is_black(radiance(e, path[k - 1].p - at))) continue;
+      Path full(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(k));
+      Vertex light;
+      light.type = VertexType::Light;
+      light.p = at;
+      light.emitter = &e;
+      light.at_point = true;
+      full.push_back(light);
+      const StrategySum r =
+          strategy_weight_sum(scene, full, (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
+      CHECK_NEAR(r.sum, 1.f, 2e-4f);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 100);
 }

@@ -41,6 +41,9 @@ The references (see README.md beside them for how long they took):
 * ``textured_64``: ``cornell_box(resolution=(64, 64), variant="textured")`` (a bitmap back
   wall, a checkerboard floor, an aluminium block of checkerboard roughness), ``max_depth=8``,
   ``rr_depth=5``.
+* ``point_64``, ``spot_64``: ``cornell_box(resolution=(64, 64), variant="point")`` and
+  ``variant="spot"`` (the classic box lit by a point light or a spot light below the ceiling),
+  ``max_depth=8``, ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -134,6 +137,20 @@ def _references() -> dict[str, Reference]:
             "smooth_64",
             'cornell_box(resolution=(64, 64), variant="smooth")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="smooth"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "point_64",
+            'cornell_box(resolution=(64, 64), variant="point")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="point"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "spot_64",
+            'cornell_box(resolution=(64, 64), variant="spot")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="spot"),
             spp=131072,
             max_depth=8,
         ),

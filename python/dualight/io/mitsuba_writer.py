@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from dualight.emitters import PointLight, SpotLight
 from dualight.io._common import PathLike
 from dualight.materials import Material
 from dualight.scene import Scene
@@ -86,6 +87,21 @@ def _write_bsdf(
     if not isinstance(material, Material):
         raise TypeError(f"unknown material {type(material).__name__}")
     _write_plugin(parent, "bsdf", material._mitsuba_bsdf(), save_texels=save_texels)
+
+
+def _write_emitter(root: ET.Element, light: PointLight | SpotLight) -> None:
+    """A point or spot light as Mitsuba 3's stand-alone emitter."""
+    if isinstance(light, PointLight):
+        emitter = _element(root, "emitter", type="point")
+        _element(emitter, "point", name="position", value=_fmt(light.position))
+    else:
+        emitter = _element(root, "emitter", type="spot")
+        origin, target, up = light._look_at()
+        transform = _element(emitter, "transform", name="to_world")
+        _element(transform, "lookat", origin=_fmt(origin), target=_fmt(target), up=_fmt(up))
+        _element(emitter, "float", name="cutoff_angle", value=repr(light.cutoff_angle))
+        _element(emitter, "float", name="beam_width", value=repr(light.beam_width))
+    _element(emitter, "rgb", name="intensity", value=_fmt(light.intensity))
 
 
 def save_mitsuba_xml(
@@ -206,6 +222,8 @@ def save_mitsuba_xml(
         if mesh.is_emitter:
             emitter = _element(shape, "emitter", type="area")
             _element(emitter, "rgb", name="radiance", value=_fmt(mesh.emission))
+    for light in scene.emitters:
+        _write_emitter(root, light)
     ET.indent(root)
     out.write_text(
         "<!-- Written by dualight.save_mitsuba_xml -->\n"

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from dualight.emitters import PointLight, SpotLight
 from dualight.io._common import (
     RGB,
     PathLike,
@@ -59,7 +60,7 @@ _SUPPORTED = {
         "roughplastic",
     ),
     "texture": ("bitmap", "checkerboard"),
-    "emitter": ("area (inside a shape)",),
+    "emitter": ("area (inside a shape)", "point", "spot"),
     "sensor": ("perspective",),
     "film": ("hdrfilm",),
 }
@@ -555,6 +556,49 @@ def _no_children(ctx: _Context, element: ET.Element) -> None:
             )
 
 
+_EMITTER_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
+    "point": {
+        "intensity": ("rgb", "float"),
+        "position": ("point", "vector"),
+        "to_world": ("transform",),
+    },
+    "spot": {
+        "intensity": ("rgb", "float"),
+        "cutoff_angle": ("float",),
+        "beam_width": ("float",),
+        "to_world": ("transform",),
+    },
+}
+
+
+def _emitter(ctx: _Context, element: ET.Element) -> PointLight | SpotLight:
+    """A stand-alone ``point`` or ``spot`` emitter (Mitsuba 3's parameters and defaults:
+    intensity 1, a spot's cutoff 20 degrees and beam width 3/4 of it, shining along its
+    ``to_world``'s +z)."""
+    kind = ctx.attr(element, "type")
+    if kind not in _EMITTER_PROPERTIES:
+        raise ctx.error(
+            element,
+            f"emitter type {kind!r} is not supported at the top level (supported: point, "
+            "spot; area emitters go inside a <shape>)",
+        )
+    props = _properties(ctx, element, _EMITTER_PROPERTIES[kind], f"{kind} emitter")
+    _no_children(ctx, element)
+    intensity = _rgb_value(ctx, props["intensity"]) if "intensity" in props else (1.0, 1.0, 1.0)
+    m = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
+    if "position" in props and "to_world" in props:
+        raise ctx.error(element, "a point emitter takes position or to_world, not both")
+    origin = _vector(ctx, props["position"]) if "position" in props else m[:3, 3]
+    cutoff = _number(ctx, props.get("cutoff_angle"), 20.0)
+    beam = _number(ctx, props.get("beam_width"), 0.75 * cutoff)
+    try:
+        if kind == "point":
+            return PointLight(tuple(origin), intensity)
+        return SpotLight(tuple(origin), tuple(m[:3, 2]), intensity, cutoff, beam)
+    except ValueError as e:
+        raise ctx.error(element, f"{kind} emitter: {e}") from None
+
+
 def _bsdf_or_ref(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:
     if element.tag == "ref":
         ref = ctx.attr(element, "id")
@@ -928,11 +972,7 @@ def _parse(
             _shape(ctx, element, bsdfs, scene, shapes, sphere_subdivisions)
             shapes += 1
         elif tag == "emitter":
-            raise ctx.error(
-                element,
-                'stand-alone emitters are not supported: only <emitter type="area"> inside '
-                "a <shape>",
-            )
+            scene.add_emitter(_emitter(ctx, element))
         else:
             raise ctx.error(
                 element,
@@ -967,7 +1007,9 @@ def load_mitsuba_xml(
       as numbers or Mitsuba's IOR names, defaults as in Mitsuba); see
       :mod:`dualight.materials`;
     * ``<emitter type="area">`` inside a shape with an RGB ``radiance`` (one-sided, on the
-      normals' side);
+      normals' side); stand-alone ``point`` (``position`` or ``to_world``) and ``spot``
+      (``to_world``, its +z the beam's axis; ``cutoff_angle``, ``beam_width``) emitters with
+      an RGB or float ``intensity`` (:mod:`dualight.emitters`);
     * ``<sensor type="perspective">`` with ``fov``, ``fov_axis`` (x, y, diagonal, smaller,
       larger; converted to dualight's fov along x), ``to_world`` (rotation and translation);
       its ``<film type="hdrfilm">`` ``width`` and ``height``; its sampler's ``sample_count``
@@ -984,7 +1026,7 @@ def load_mitsuba_xml(
     plastics are one-sided unless in ``twosided``, as in Mitsuba); a shape without a BSDF gets
     Mitsuba's default: diffuse 0.5, or black if it emits.
 
-    Everything else (other plugin types, textures, spectra, stand-alone emitters, includes,
+    Everything else (other plugin types, textures, spectra, other emitters, includes,
     unknown properties) raises a ``ValueError`` that names the element and the file.
 
     Parameters

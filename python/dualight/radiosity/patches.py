@@ -28,8 +28,14 @@ def require_diffuse(scene: Scene) -> None:
     reflector (by its flags, :attr:`dualight.Material.is_diffuse_reflector`).
 
     Radiosity's linear system ``B = E + rho F B`` holds for Lambertian surfaces only; a mirror
-    or glass would silently be rendered as something else.
+    or glass would silently be rendered as something else. Emission comes from patches only:
+    a point or spot light (``Scene.add_emitter``) is refused too.
     """
+    if scene.emitters:
+        raise ValueError(
+            f"radiosity takes emission from patches only; the scene has "
+            f"{type(scene.emitters[0]).__name__} emitter(s) (use dualight.render for them)"
+        )
     for mesh in scene.meshes:
         if not mesh.material.is_diffuse_reflector:
             raise ValueError(

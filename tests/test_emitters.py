@@ -1,0 +1,118 @@
+"""Point and spot lights (issue 20): their parameters, the scene's emitter list, scene files,
+and the estimators agreeing with each other on them (the comparisons with Mitsuba 3 are in
+test_pathspace_vs_mitsuba.py and test_pssmlt.py)."""
+
+from __future__ import annotations
+
+import pickle
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dualight
+from dualight import metrics, scenes
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: dualight.PointLight((0, 0, float("nan"))), "position must be finite"),
+        (lambda: dualight.PointLight((0, 0, 1e31)), "position must be finite"),
+        (lambda: dualight.PointLight((0, 0)), "position must be 3 numbers"),
+        (lambda: dualight.PointLight((0, 0, 0), (1, -1, 1)), "intensity must be >= 0"),
+        (lambda: dualight.PointLight((0, 0, 0), float("inf")), "intensity must be finite"),
+        (lambda: dualight.SpotLight((0, 0, 0), (0, 0, 0)), "direction must be non-zero"),
+        (lambda: dualight.SpotLight((0, 0, 0), cutoff_angle=0), "cutoff_angle must lie in"),
+        (lambda: dualight.SpotLight((0, 0, 0), cutoff_angle=181), "cutoff_angle must lie in"),
+        (lambda: dualight.SpotLight((0, 0, 0), cutoff_angle=30, beam_width=31), "beam_width"),
+        (lambda: dualight.SpotLight((0, 0, 0), beam_width=-1), "beam_width"),
+    ],
+)
+def test_lights_refuse_bad_parameters(make, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_the_scene_takes_lights_and_keeps_them() -> None:
+    scene = scenes.cornell_box((16, 16), variant="spot")
+    (spot,) = scene.emitters
+    assert spot.beam_width == pytest.approx(0.75 * spot.cutoff_angle)  # Mitsuba's default
+    assert scene.has_emitters
+    with pytest.raises(TypeError, match="PointLight or dualight.SpotLight"):
+        scene.add_emitter((0, 0, 0))  # type: ignore[arg-type]
+    copy = pickle.loads(pickle.dumps(scene))
+    assert copy.emitters == scene.emitters
+    a = dualight.render(scene, "bdpt", spp=4, seed=3, progress=False)
+    b = dualight.render(copy, "bdpt", spp=4, seed=3, progress=False)
+    assert np.array_equal(np.asarray(a), np.asarray(b))
+    # Only a light without a surface: the meshes emit nothing, the scene still renders.
+    dark = scenes.cornell_box((16, 16), light_scale=0.0)
+    with pytest.raises(ValueError, match="no emitter"):
+        dualight.render(dark, "path", spp=1, progress=False)
+    dark.add_emitter(dualight.PointLight((278, 500, 279), 1e4))
+    assert np.asarray(dualight.render(dark, "path", spp=1, progress=False)).mean() > 0
+
+
+@pytest.mark.parametrize("method", ["jacobi", "hierarchical"])
+def test_radiosity_refuses_lights_without_a_surface(method: str) -> None:
+    from dualight import radiosity
+
+    with pytest.raises(ValueError, match="emission from patches only"):
+        radiosity.solve(scenes.cornell_box((16, 16), variant="point"), method=method, max_edge=200)
+
+
+@pytest.mark.parametrize("variant", ["point", "spot"])
+def test_mitsuba_xml_round_trip(tmp_path: Path, variant: str) -> None:
+    scene = scenes.cornell_box((16, 16), variant=variant)
+    dualight.save_mitsuba_xml(scene, tmp_path / "s.xml")
+    (back,) = dualight.load_mitsuba_xml(tmp_path / "s.xml").emitters
+    (light,) = scene.emitters
+    assert type(back) is type(light)
+    np.testing.assert_allclose(back.position, light.position)
+    np.testing.assert_allclose(back.intensity, light.intensity)
+    if variant == "spot":
+        d = np.asarray(light.direction) / np.linalg.norm(light.direction)
+        np.testing.assert_allclose(back.direction, d, atol=1e-6)
+        assert (back.cutoff_angle, back.beam_width) == (light.cutoff_angle, light.beam_width)
+
+
+def test_mitsuba_xml_reads_mitsubas_defaults_and_refuses_the_rest(tmp_path: Path) -> None:
+    def load(emitter: str) -> dualight.Scene:
+        (tmp_path / "s.xml").write_text(f'<scene version="3.0.0">{emitter}</scene>')
+        return dualight.load_mitsuba_xml(tmp_path / "s.xml")
+
+    (spot,) = load('<emitter type="spot"/>').emitters
+    assert (spot.cutoff_angle, spot.beam_width, spot.direction) == (20.0, 15.0, (0, 0, 1))
+    (point,) = load(
+        '<emitter type="point"><transform name="to_world"><translate x="1" y="2" z="3"/>'
+        '</transform><float name="intensity" value="2"/></emitter>'
+    ).emitters
+    assert point.position == (1, 2, 3) and point.intensity == (2, 2, 2)
+    with pytest.raises(ValueError, match="'constant' is not supported"):
+        load('<emitter type="constant"/>')
+    with pytest.raises(ValueError, match="cutoff_angle must lie in"):
+        load('<emitter type="spot"><float name="cutoff_angle" value="200"/></emitter>')
+    with pytest.raises(ValueError, match="position or to_world, not both"):
+        load(
+            '<emitter type="point"><point name="position" value="0 0 0"/>'
+            '<transform name="to_world"><translate x="1"/></transform></emitter>'
+        )
+
+
+@pytest.mark.parametrize("variant", ["point", "spot"])
+def test_light_tracer_and_bdpt_agree_with_the_path_tracer(variant: str) -> None:
+    """Delta-position lights: the path tracer reaches them by next-event estimation only, the
+    light tracer from their subpaths only; per-block Welch tests, and a 3 % dimmer light
+    that fails them."""
+    scene = scenes.cornell_box((32, 32), variant=variant)
+    path = dualight.render(scene, "path", spp=512, seed=1, progress=False, max_depth=8)
+    for method, spp in (("light", 512), ("bdpt", 128)):
+        for scale, should_pass in ((1.0, True), (0.97, False)):
+            other = scenes.cornell_box((32, 32), variant=variant, light_scale=scale)
+            img = dualight.render(other, method, spp=spp, seed=2, progress=False, max_depth=8)
+            r = metrics.welch_test(
+                np.asarray(img), img.variance, np.asarray(path), path.variance, block=8
+            )
+            print(f"\n{variant} {method} x{scale}: {100 * r.pass_fraction:.2f} % of 8x8 blocks")
+            assert (r.pass_fraction >= 0.9975) == should_pass
