@@ -54,12 +54,41 @@ def test_the_scene_takes_lights_and_keeps_them() -> None:
     assert np.asarray(dualight.render(dark, "path", spp=1, progress=False)).mean() > 0
 
 
-@pytest.mark.parametrize("method", ["jacobi", "hierarchical"])
-def test_radiosity_refuses_lights_without_a_surface(method: str) -> None:
+def test_hierarchical_radiosity_refuses_lights_without_a_surface() -> None:
     from dualight import radiosity
 
     with pytest.raises(ValueError, match="emission from patches only"):
-        radiosity.solve(scenes.cornell_box((16, 16), variant="point"), method=method, max_edge=200)
+        radiosity.solve(scenes.cornell_box((16, 16), variant="point"), method="hierarchical")
+
+
+@pytest.mark.parametrize("variant", ["point", "spot"])
+def test_radiosity_takes_the_lights_first_shot(variant: str) -> None:
+    """Point and spot lights enter the uniform solvers as E_i = rho_i H_i (H_i the irradiance
+    they give patch i directly): the measurement <R, B> equals the dual <I, E> and agrees
+    with the path tracer's image mean up to radiosity's discretisation; the light 10 %
+    dimmer fails that."""
+    from dualight import radiosity
+
+    def measured(scale: float) -> tuple[np.ndarray, np.ndarray]:
+        scene = scenes.cornell_box((32, 32), variant=variant, light_scale=scale)
+        solution = radiosity.solve(scene, method="gauss_seidel", max_edge=80.0)
+        return solution.measurement_primal, solution.measurement_dual
+
+    primal, dual = measured(1.0)
+    np.testing.assert_allclose(primal, dual, rtol=1e-3)
+    scene = scenes.cornell_box((32, 32), variant=variant)
+    path = np.asarray(dualight.render(scene, "path", spp=512, seed=4, progress=False))
+    ratio = primal / path.mean(axis=(0, 1))
+    control = measured(0.9)[0] / path.mean(axis=(0, 1))
+    print(f"\n{variant}: <R,B> / path mean {np.round(ratio, 4)}; light x0.9 {np.round(control, 4)}")
+    assert np.all(np.abs(ratio - 1) < TOLERANCE)
+    assert np.any(np.abs(control - 1) > TOLERANCE)
+
+
+# Radiosity's discretisation: at max_edge 80 the measurement lay 2.7 % (point) and 1.9 % (spot)
+# under the path tracer's mean at most, at max_edge 40 1.7 % and 1.1 % (94 s instead of 6 s);
+# the light x0.9 control 12.5 % and 11.7 % under.
+TOLERANCE = 0.05
 
 
 @pytest.mark.parametrize("variant", ["point", "spot"])

@@ -115,13 +115,20 @@ NOT_B_NORMALISED = {"mlt_flat"}
 # (scene, variant) pairs under test: every variant on the Cornell box; the three methods with
 # their defaults, and MLT with its flattened importance, on the caustic box and the door.
 # Marked long (make test-long), left out of make test for its time as issues 19 and 20 added
-# scenes: the caustic box's and the door's flattened-importance runs and the Cornell box's
+# scenes: the caustic box's and the door's flattened-importance runs, the Cornell box's
 # PSSMLT without Kelemen's MIS (the flattened importance keeps its Cornell box run in make
-# test; test_stats_and_options checks the plain estimator's weights against Kelemen's).
+# test; test_stats_and_options checks the plain estimator's weights against Kelemen's) and
+# the caustic box's MMLT (50 s: 36 runs for its skew; the caustic box keeps PSSMLT and MLT,
+# MMLT the Cornell, door, glossy, coated and point-light boxes).
 CASES = [("cornell", v) for v in VARIANTS] + [
     (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
 ]
-LONG_CASES = {("caustics", "mlt_flat"), ("cornell", "pssmlt_plain"), ("door", "mlt_flat")}
+LONG_CASES = {
+    ("caustics", "mlt_flat"),
+    ("cornell", "pssmlt_plain"),
+    ("door", "mlt_flat"),
+    ("caustics", "mmlt"),
+}
 # Glossy, coated, smooth-shaded and textured materials, and point and spot lights (issue 20),
 # in the three Metropolis methods (path-space MLT refuses the coated box's smooth plastic
 # floor: its Dirac coat over a diffuse base); block tests only. make test keeps one or two

@@ -10,6 +10,7 @@
 #include "bindings/numpy_util.h"
 #include "bindings/options.h"
 #include "geometry/camera_hits.h"
+#include "radiosity/direct_irradiance.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hierarchical.h"
 #include "radiosity/solve_direct.h"
@@ -215,6 +216,29 @@ void bind_radiosity(py::module_& m) {
       "scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only "
       "those of non-zero importance for that view (form_factors.h).");
 
+
+  m.def(
+      "direct_irradiance",
+      [](std::shared_ptr<const Scene> patches, int points_per_axis, int threads, const py::object& progress) {
+        if (points_per_axis < 1 || points_per_axis > 64) throw py::value_error("points_per_axis must be in [1, 64]");
+        RenderControl control;
+        auto run = run_interruptible([&] { return direct_irradiance(*patches, points_per_axis, threads, control); },
+                                     control, progress);
+        if (run.keyboard_interrupt) {  // patches are missing: nothing worth keeping
+          PyErr_SetNone(PyExc_KeyboardInterrupt);
+          throw py::error_already_set();
+        }
+        finished(run, py::none());
+        py::array_t<double> out({static_cast<py::ssize_t>(run.result.size()), py::ssize_t{3}});
+        auto o = out.mutable_unchecked<2>();
+        for (size_t k = 0; k < run.result.size(); ++k) {
+          for (int c = 0; c < 3; ++c) o(static_cast<py::ssize_t>(k), c) = run.result[k][c];
+        }
+        return out;
+      },
+      py::arg("patches"), py::arg("points_per_axis") = 4, py::arg("threads") = 0, py::arg("progress") = py::none(),
+      "Mean irradiance (N, 3) over each patch of `patches` (one triangle each) from its point and spot lights, "
+      "with visibility, at the centroids of an n x n split of the patch (radiosity/direct_irradiance.h).");
 
   py::class_<RadiositySystem, std::shared_ptr<RadiositySystem>>(m, "RadiositySystem",
                                                                 "M = I - diag(rho) F for 3 channels.")

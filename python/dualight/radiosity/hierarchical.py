@@ -201,6 +201,13 @@ class HierarchicalSolver:
         progress: Callable[[int, int], None] | None,
     ) -> None:
         require_diffuse(scene)
+        if scene.emitters:
+            raise ValueError(
+                "hierarchical radiosity takes emission from patches only; the scene has "
+                f"{type(scene.emitters[0]).__name__} emitter(s) (the uniform solvers take "
+                "their first shot: radiosity.solve with method 'direct', 'jacobi', "
+                "'gauss_seidel' or 'southwell')"
+            )
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -28,14 +29,8 @@ def require_diffuse(scene: Scene) -> None:
     reflector (by its flags, :attr:`dualight.Material.is_diffuse_reflector`).
 
     Radiosity's linear system ``B = E + rho F B`` holds for Lambertian surfaces only; a mirror
-    or glass would silently be rendered as something else. Emission comes from patches only:
-    a point or spot light (``Scene.add_emitter``) is refused too.
+    or glass would silently be rendered as something else.
     """
-    if scene.emitters:
-        raise ValueError(
-            f"radiosity takes emission from patches only; the scene has "
-            f"{type(scene.emitters[0]).__name__} emitter(s) (use dualight.render for them)"
-        )
     for mesh in scene.meshes:
         if not mesh.material.is_diffuse_reflector:
             raise ValueError(
@@ -231,7 +226,8 @@ class PatchMesh:
         Per patch, ``(N,)``, ``(N, 3)``, ``(N, 3)``.
     reflectance, emission:
         Per patch RGB, ``(N, 3)``: the mesh's diffuse albedo (a texture's mean over the
-        patch) and emitted radiosity ``E = pi * Le`` (W m^-2).
+        patch) and emitted radiosity ``E = pi * Le`` (W m^-2; point and spot lights are not
+        in it: see :meth:`direct_irradiance`).
     uv_corners:
         ``(N, 3, 2)`` the texture coordinates of each patch's corners (NaN on untextured
         meshes), from which :meth:`Solution.render` draws textures.
@@ -379,6 +375,32 @@ class PatchMesh:
                 Le.reshape(n_mesh, 3),
             )
         return self._compiled
+
+    def direct_irradiance(
+        self,
+        points_per_axis: int = 4,
+        threads: int = 0,
+        progress: Callable[[int, int], None] | None = None,
+    ) -> np.ndarray:
+        """``(N, 3)`` mean irradiance over each patch straight from the scene's point and spot
+        lights (:meth:`dualight.Scene.add_emitter`), with visibility, at the centroids of a
+        ``points_per_axis`` x ``points_per_axis`` split of the patch; zeros without such
+        lights. The uniform solvers add ``reflectance * direct_irradiance()`` to the emitted
+        radiosity: the lights' first shot."""
+        if not self._scene.emitters:
+            return np.zeros((len(self), 3))
+        from dualight import _core
+
+        n_mesh = len(self._scene.meshes)
+        lit = _core.Scene(
+            self.vertices.astype(np.float32),
+            self.triangles.astype(np.uint32),
+            self.mesh_index.astype(np.uint32),
+            np.zeros((n_mesh, 3), np.float32),
+            np.zeros((n_mesh, 3), np.float32),
+            emitters=[e._core_emitter() for e in self._scene.emitters],
+        )
+        return _core.direct_irradiance(lit, points_per_axis, threads, progress)
 
     def __repr__(self) -> str:
         return f"PatchMesh({len(self)} patches, {len(self.vertices)} vertices)"

@@ -294,7 +294,18 @@ def solve(
         if bar is not None:
             bar.close()
     system = _core.RadiositySystem(F, patches.reflectance, patches.areas)
+    # Point and spot lights enter as their first shot: the reflected part of the irradiance
+    # they give each patch directly (Cohen and Wallace 1993, sec. 2.3).
     E = patches.emission
+    if scene.emitters:
+        callback, bar = _progress_of(progress, "direct light")
+        try:
+            E = E + patches.reflectance * patches.direct_irradiance(
+                threads=n_threads, progress=callback
+            )
+        finally:
+            if bar is not None:
+                bar.close()
     R3 = np.repeat(R[:, None], 3, axis=1)
 
     stats: dict[str, Any] = {"patches": len(patches), "form_factors": ff_stats, "method": method}
