@@ -22,34 +22,43 @@ namespace dualight {
 
 using Emitter = std::variant<AreaEmitter, PointEmitter, SpotEmitter>;
 
+// f(the member e holds). Area emitters, the only kind in most scenes and the one paths hit,
+// are tested first and inlined: a std::visit over the three members is a jump table the
+// compiler does not see through (the path tracer took 1.6 % more instructions with it).
+template <class F>
+[[gnu::always_inline]] inline decltype(auto) with_emitter(const Emitter& e, F&& f) {
+  if (const auto* a = std::get_if<AreaEmitter>(&e)) return f(*a);
+  return std::visit(f, e);
+}
+
 inline EmitterFlags flags(const Emitter& e) {
-  return std::visit([](const auto& x) { return flags(x); }, e);
+  return with_emitter(e, [](const auto& x) { return flags(x); });
 }
 inline bool is_delta_position(const Emitter& e) { return is_delta_position(flags(e)); }
 inline bool is_delta_direction(const Emitter& e) { return is_delta_direction(flags(e)); }
 inline double power(const Emitter& e) {
-  return std::visit([](const auto& x) { return power(x); }, e);
+  return with_emitter(e, [](const auto& x) { return power(x); });
 }
 inline Color radiance(const Emitter& e, const Vec3& w) {
-  return std::visit([&](const auto& x) { return radiance(x, w); }, e);
+  return with_emitter(e, [&](const auto& x) { return radiance(x, w); });
 }
 inline float pdf_Le_position(const Emitter& e, float pmf) {
-  return std::visit([&](const auto& x) { return pdf_Le_position(x, pmf); }, e);
+  return with_emitter(e, [&](const auto& x) { return pdf_Le_position(x, pmf); });
 }
 inline EmitterPoint sample_Le_position(const Emitter& e, float pmf, Point2 u) {
-  return std::visit([&](const auto& x) { return sample_Le_position(x, pmf, u); }, e);
+  return with_emitter(e, [&](const auto& x) { return sample_Le_position(x, pmf, u); });
 }
 inline float pdf_Le_direction(const Emitter& e, const Vec3& w) {
-  return std::visit([&](const auto& x) { return pdf_Le_direction(x, w); }, e);
+  return with_emitter(e, [&](const auto& x) { return pdf_Le_direction(x, w); });
 }
 inline bool sample_Le_direction(const Emitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
-  return std::visit([&](const auto& x) { return sample_Le_direction(x, pdf_a, u, d); }, e);
+  return with_emitter(e, [&](const auto& x) { return sample_Le_direction(x, pdf_a, u, d); });
 }
 inline bool sample_Li(const Emitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
-  return std::visit([&](const auto& x) { return sample_Li(x, pmf, ref, u, s); }, e);
+  return with_emitter(e, [&](const auto& x) { return sample_Li(x, pmf, ref, u, s); });
 }
 inline float pdf_Li(const Emitter& e, float pmf, float dist, float cos_light) {
-  return std::visit([&](const auto& x) { return pdf_Li(x, pmf, dist, cos_light); }, e);
+  return with_emitter(e, [&](const auto& x) { return pdf_Li(x, pmf, dist, cos_light); });
 }
 
 }  // namespace dualight
