@@ -21,7 +21,8 @@ std::vector<Point2> centroid_grid(int n) {
   return out;
 }
 
-// Irradiance at p (on patch `prim`, normal n) from one point emitter, visibility included.
+// Irradiance at p (on a patch of normal n, either side) from one point emitter, visibility
+// included.
 Color irradiance_from(const Scene& scene, const Emitter& e, const Vec3& p, const Vec3& n) {
   LightSample ls;
   if (!sample_Li(e, 1.f, p, {0.5f, 0.5f}, ls)) return Color(0.f);

@@ -115,17 +115,21 @@ _ALBEDO_POINTS = _albedo_points(4)
 _ROOT_POINTS_IN_ALL = 4_000_000
 
 
+def _triangle_uv(mesh: Any, sel: np.ndarray) -> np.ndarray:
+    """The (u, v) of the corners of mesh triangles ``sel``: (S, 3, 2). A mesh without texture
+    coordinates uses each triangle's barycentrics, as the renderers do."""
+    if mesh.uv is None:
+        return np.broadcast_to([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (len(sel), 3, 2))
+    return mesh.uv[mesh.triangles[sel]]
+
+
 def _patch_uv(mesh: Any, sel: np.ndarray, corner_bary: np.ndarray) -> np.ndarray:
     """The (u, v) of the corners of mesh triangles ``sel``'s sub-triangles (barycentrics
     ``corner_bary``, (K, 3, 2)): (S * K, 3, 2), NaN where the mesh's reflectance is not a
-    texture. A mesh without texture coordinates uses each triangle's barycentrics, as the
-    renderers do."""
+    texture."""
     if not mesh.material.textured:
         return np.full((len(sel) * len(corner_bary), 3, 2), np.nan)
-    if mesh.uv is None:
-        src = np.broadcast_to([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (len(sel), 3, 2))
-    else:
-        src = mesh.uv[mesh.triangles[sel]]  # (S, 3, 2)
+    src = _triangle_uv(mesh, sel)  # (S, 3, 2)
     b1, b2 = corner_bary[None, :, :, 0:1], corner_bary[None, :, :, 1:2]
     uv = (
         (1 - b1 - b2) * src[:, None, None, 0]
@@ -158,14 +162,13 @@ def triangle_albedo(scene: Scene) -> np.ndarray | None:
     is textured."""
     if not any(mesh.material.textured for mesh in scene.meshes):
         return None
-    identity = np.array([[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]])
     textured = sum(len(m.triangles) for m in scene.meshes if m.material.textured)
     at = _albedo_points(int(np.clip(np.sqrt(_ROOT_POINTS_IN_ALL / textured), 4, 64)))
     out = []
     for m, mesh in enumerate(scene.meshes):
         rows = np.broadcast_to(np.asarray(mesh.reflectance, np.float64), (len(mesh.triangles), 3))
         if mesh.material.textured:
-            uv = _patch_uv(mesh, np.arange(len(mesh.triangles)), identity)
+            uv = _triangle_uv(mesh, np.arange(len(mesh.triangles)))
             rows = _mean_albedo(scene, np.full(len(rows), m), uv, at)
         out.append(rows)
     return np.concatenate(out)
@@ -192,10 +195,7 @@ def sub_triangle_uv(scene: Scene, root: np.ndarray, vertices: np.ndarray) -> np.
         if not mesh.material.textured:
             continue
         pick = np.nonzero(mesh_of[root] == m)[0]
-        if mesh.uv is None:
-            src = np.broadcast_to([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], (len(pick), 3, 2))
-        else:
-            src = mesh.uv[mesh.triangles[root[pick] - first[m]]]  # (P, 3, 2)
+        src = _triangle_uv(mesh, root[pick] - first[m])  # (P, 3, 2)
         b = bary[pick]  # (P, 3 corners, 2)
         out[pick] = (
             (1 - b[..., :1] - b[..., 1:]) * src[:, None, 0]
