@@ -23,8 +23,9 @@ namespace dualight {
 using Emitter = std::variant<AreaEmitter, PointEmitter, SpotEmitter>;
 
 // f(the member e holds). Area emitters, the only kind in most scenes and the one paths hit,
-// are tested first and inlined: a std::visit over the three members is a jump table the
-// compiler does not see through (the path tracer took 1.6 % more instructions with it).
+// are tested first and inlined ahead of the std::visit over the three members (the light
+// tracer's render took 0.5 % fewer instructions; the path tracer's +1.6 % over the one-member
+// variant stayed: issue 20's note).
 template <class F>
 [[gnu::always_inline]] inline decltype(auto) with_emitter(const Emitter& e, F&& f) {
   if (const auto* a = std::get_if<AreaEmitter>(&e)) return f(*a);
