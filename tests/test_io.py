@@ -539,7 +539,7 @@ UNSUPPORTED = [
         'value="0.5"/></bsdf></shape>',
         r"'reflectance' must be given as <rgb> or <float> or <texture> or <ref> \(got <spectrum>",
     ),
-    ("envmap", '<emitter type="envmap"/>', "emitter type 'envmap' is not supported"),
+    ("projector", '<emitter type="projector"/>', "emitter type 'projector' is not supported"),
     (
         "point emitter in shape",
         '<shape type="cube"><emitter type="point"/></shape>',

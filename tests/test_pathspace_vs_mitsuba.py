@@ -140,6 +140,29 @@ CASES = {
         {"spot_cutoff": 45.0},
         {"path": 2048, "light": 1024, "bdpt": 256},
     ),
+    # Issue 20's emitters at infinity, lighting the box through its open top: a directional
+    # light (next-event estimation only for the path tracer; the light tracer starts on a disk
+    # behind the scene), a constant sky and an environment map with a sun in it (escaping rays
+    # see them, MIS-weighted against next-event estimation). BDPT and the MLT methods refuse
+    # them so far. Controls: the sun and the sky 3 % dimmer; the map turned 30 degrees about y.
+    "sun": Case(
+        "sun_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="sun", **kw),
+        {"light_scale": 0.97},
+        {"path": 1024, "light": 1024},
+    ),
+    "sky": Case(
+        "sky_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="sky", **kw),
+        {"light_scale": 0.97},
+        {"path": 1024},
+    ),
+    "envmap": Case(
+        "envmap_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="envmap", **kw),
+        {"env_rotation": 30.0},
+        {"path": 512},
+    ),
 }
 RUNS = [(name, method) for name, case in sorted(CASES.items()) for method in case.spp]
 

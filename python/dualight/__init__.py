@@ -16,7 +16,13 @@ from __future__ import annotations
 from importlib.metadata import PackageNotFoundError, version
 
 from dualight import emitters, io, materials, metrics, radiosity, scenes, textures
-from dualight.emitters import PointLight, SpotLight
+from dualight.emitters import (
+    ConstantEnvironment,
+    DirectionalLight,
+    EnvironmentMap,
+    PointLight,
+    SpotLight,
+)
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import (
@@ -48,8 +54,11 @@ __all__ = [
     "Camera",
     "Checkerboard",
     "Conductor",
+    "ConstantEnvironment",
     "Dielectric",
     "Diffuse",
+    "DirectionalLight",
+    "EnvironmentMap",
     "Image",
     "Material",
     "Mesh",

@@ -257,8 +257,23 @@ class Texture:
         ...
 class Emitter:
     """
-    An emitter without a surface (built by dualight.PointLight, SpotLight).
+    An emitter without a surface (built by dualight.PointLight, SpotLight, DirectionalLight, ConstantEnvironment, EnvironmentMap).
     """
+    @staticmethod
+    def constant(radiance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> Emitter:
+        """
+        Constant environment: radiance from every direction.
+        """
+    @staticmethod
+    def directional(direction: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], irradiance: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> Emitter:
+        """
+        Directional light: irradiance in W/m^2 per channel, travelling along direction.
+        """
+    @staticmethod
+    def envmap(rgb: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], scale: typing.SupportsFloat | typing.SupportsIndex, to_world: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(9)"]) -> Emitter:
+        """
+        Latitude-longitude environment (Mitsuba 3's envmap conventions): rgb (height, width, 3) linear radiance, scale, to_world a 3 x 3 rotation (row-major).
+        """
     @staticmethod
     def point(position: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], intensity: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> Emitter:
         """
@@ -272,7 +287,7 @@ class Emitter:
     @property
     def power(self) -> float:
         """
-        Flux / pi (the weight of the scene's light choice).
+        Flux / pi (the weight of the scene's light choice; for emitters at infinity, over a unit bounding sphere until a scene holds them).
         """
 class Film:
     """

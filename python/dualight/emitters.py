@@ -1,22 +1,33 @@
-"""Emitters without a surface: point and spot lights (Mitsuba 3's ``point`` and ``spot``).
+"""Emitters without a surface: point and spot lights (Mitsuba 3's ``point`` and ``spot``),
+directional lights (``directional``) and environments at infinity (``constant``, ``envmap``).
 
 Area lights are meshes with ``emission`` (:meth:`dualight.Scene.add_mesh`); these are added
-with :meth:`dualight.Scene.add_emitter`. Their positions are Dirac deltas: no path can hit
-them, so the path tracer reaches them only by next-event estimation, the light tracer only
-from their light subpaths, and BDPT only by the strategies that connect to them.
+with :meth:`dualight.Scene.add_emitter`. Point and spot positions and the directional light's
+direction are Dirac deltas: no path can hit them, so the path tracer reaches them only by
+next-event estimation, the light tracer only from their light subpaths, and BDPT only by the
+strategies that connect to them. Rays that leave the scene see the environments.
+
+Emitters at infinity so far render with ``method="path"`` (all three) and ``"light"``
+(directional) and light radiosity's patches (directional); the other estimators refuse them
+with a ``ValueError`` naming the emitter (issue 20).
 
 Examples
 --------
 >>> scene.add_emitter(dualight.PointLight(position=(0, 1.9, 0), intensity=(5, 5, 5)))
 >>> scene.add_emitter(dualight.SpotLight((0, 1.9, 0), direction=(0, -1, 0), intensity=(20,) * 3,
 ...                                      cutoff_angle=30))
+>>> scene.add_emitter(dualight.DirectionalLight(direction=(0, -1, -1), irradiance=3))
+>>> scene.add_emitter(dualight.EnvironmentMap("sky.exr", scale=0.5))
 """
 
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
 
 from dualight import _core
 
@@ -35,11 +46,22 @@ def _vec3(value: Any, name: str) -> Vec3:
     return out  # type: ignore[return-value]
 
 
-def _intensity(value: Any) -> Vec3:
-    rgb = _vec3((value,) * 3 if isinstance(value, int | float) else value, "intensity")
+def _intensity(value: Any, name: str = "intensity") -> Vec3:
+    rgb = _vec3((value,) * 3 if isinstance(value, int | float) else value, name)
     if min(rgb) < 0:
-        raise ValueError(f"intensity must be >= 0, got {rgb}")
+        raise ValueError(f"{name} must be >= 0, got {rgb}")
     return rgb
+
+
+def _direction(value: Any) -> Vec3:
+    d = _vec3(value, "direction")
+    if not any(d):
+        raise ValueError("direction must be non-zero")
+    return d
+
+
+def _rgb_spectrum(rgb: Vec3) -> dict[str, Any]:
+    return {"type": "rgb", "value": list(rgb)}
 
 
 @dataclass(frozen=True)
@@ -61,7 +83,7 @@ class PointLight:
         return {
             "type": "point",
             "position": list(self.position),
-            "intensity": {"type": "rgb", "value": list(self.intensity)},
+            "intensity": _rgb_spectrum(self.intensity),
         }
 
 
@@ -80,10 +102,7 @@ class SpotLight:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "position", _vec3(self.position, "position"))
-        d = _vec3(self.direction, "direction")
-        if not any(d):
-            raise ValueError("direction must be non-zero")
-        object.__setattr__(self, "direction", d)
+        object.__setattr__(self, "direction", _direction(self.direction))
         object.__setattr__(self, "intensity", _intensity(self.intensity))
         cutoff = float(self.cutoff_angle)
         if not 0 < cutoff <= 180:
@@ -116,10 +135,136 @@ class SpotLight:
             "to_world": mi.ScalarTransform4f().look_at(
                 origin=list(origin), target=list(target), up=list(up)
             ),
-            "intensity": {"type": "rgb", "value": list(self.intensity)},
+            "intensity": _rgb_spectrum(self.intensity),
             "cutoff_angle": self.cutoff_angle,
             "beam_width": self.beam_width,
         }
 
 
-Emitter = PointLight | SpotLight
+@dataclass(frozen=True)
+class DirectionalLight:
+    """Directional light (Mitsuba 3's ``directional``), the sun's idealisation: ``irradiance``
+    (W/m^2 per RGB channel, on a plane facing it; a number stands for grey) arriving along
+    ``direction`` (the direction the light travels in) from infinitely far away."""
+
+    direction: Vec3 = (0.0, 0.0, 1.0)
+    irradiance: Vec3 = (1.0, 1.0, 1.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "direction", _direction(self.direction))
+        object.__setattr__(self, "irradiance", _intensity(self.irradiance, "irradiance"))
+
+    def _core_emitter(self) -> _core.Emitter:
+        return _core.Emitter.directional(self.direction, self.irradiance)
+
+    def _mitsuba(self) -> dict[str, Any]:
+        return {
+            "type": "directional",
+            "direction": list(self.direction),
+            "irradiance": _rgb_spectrum(self.irradiance),
+        }
+
+
+@dataclass(frozen=True)
+class ConstantEnvironment:
+    """Constant environment (Mitsuba 3's ``constant``): ``radiance`` per RGB channel arriving
+    from every direction at infinity (a number stands for grey)."""
+
+    radiance: Vec3 = (1.0, 1.0, 1.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "radiance", _intensity(self.radiance, "radiance"))
+
+    def _core_emitter(self) -> _core.Emitter:
+        return _core.Emitter.constant(self.radiance)
+
+    def _mitsuba(self) -> dict[str, Any]:
+        return {"type": "constant", "radiance": _rgb_spectrum(self.radiance)}
+
+
+def _rotation(value: Any) -> np.ndarray:
+    """A 3x3 rotation from None (identity), a 3x3 matrix or a 4x4 transform without translation
+    use (its upper-left 3x3 must be a rotation)."""
+    if value is None:
+        return np.eye(3)
+    m = np.asarray(getattr(value, "matrix", value), dtype=np.float64)
+    if m.shape == (4, 4):
+        m = m[:3, :3]
+    if m.shape != (3, 3) or not np.all(np.isfinite(m)):
+        raise ValueError(f"to_world must be a finite 3x3 or 4x4 matrix, got shape {m.shape}")
+    if not np.allclose(m @ m.T, np.eye(3), atol=1e-5) or np.linalg.det(m) <= 0:
+        raise ValueError("to_world must be a rotation (orthonormal, determinant 1): an environment "
+                         "map's directions cannot be scaled, sheared or mirrored")
+    return m
+
+
+@dataclass(frozen=True, eq=False)
+class EnvironmentMap:
+    """Image-based environment (Mitsuba 3's ``envmap``): radiance at infinity from a
+    latitude-longitude image in Mitsuba's conventions (in the map's frame y is up: the top row
+    is +y, the bottom row -y; u = atan2(x, -z) / 2 pi, so the left edge faces -z, a quarter
+    across +x, the centre column +z), times ``scale``, turned by ``to_world`` (a rotation: 3x3,
+    or 4x4 whose upper-left 3x3 is one).
+
+    Give ``filename`` (an image OpenImageIO reads; EXR or HDR for real light probes; 8-bit files
+    are sRGB-decoded) or ``data`` (``(height, width[, 1 or 3])`` linear floats). Next-event
+    estimation samples it in proportion to its luminance.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``filename`` does not exist.
+    ValueError
+        If the image cannot be read, is negative, non-finite or black, or ``to_world`` is not a
+        rotation.
+    """
+
+    filename: str | os.PathLike[str] | None = None
+    data: Any = field(default=None, repr=False)
+    scale: float = 1.0
+    to_world: Any = field(default=None, repr=False)
+    texels: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        from dualight.textures import Bitmap
+
+        if (self.filename is None) == (self.data is None):
+            raise ValueError("EnvironmentMap: give either filename or data")
+        scale = float(self.scale)
+        if not (math.isfinite(scale) and 0 <= scale <= 1e30):
+            raise ValueError(f"EnvironmentMap scale must be finite and >= 0, got {self.scale}")
+        object.__setattr__(self, "scale", scale)
+        object.__setattr__(self, "to_world", _rotation(self.to_world))
+        bitmap = Bitmap(filename=self.filename, data=self.data)
+        texels = np.asarray(bitmap.texels, dtype=np.float32)
+        if texels.shape[2] == 1:
+            texels = np.repeat(texels, 3, axis=2)
+        if texels.min() < 0:
+            raise ValueError("EnvironmentMap: radiance must be >= 0")
+        if not texels.any():
+            raise ValueError("EnvironmentMap: the image is black (no positive pixel)")
+        if bitmap.filename is not None:
+            object.__setattr__(self, "filename", bitmap.filename)
+        texels.flags.writeable = False
+        object.__setattr__(self, "texels", texels)
+
+    def _core_emitter(self) -> _core.Emitter:
+        return _core.Emitter.envmap(self.texels, self.scale, self.to_world.ravel().tolist())
+
+    def _mitsuba(self) -> dict[str, Any]:
+        import mitsuba as mi
+
+        m = np.eye(4)
+        m[:3, :3] = self.to_world
+        return {
+            "type": "envmap",
+            "bitmap": mi.Bitmap(np.array(self.texels, dtype=np.float32, order="C")),
+            "scale": self.scale,
+            "to_world": mi.ScalarTransform4f(m.tolist()),
+        }
+
+
+Emitter = PointLight | SpotLight | DirectionalLight | ConstantEnvironment | EnvironmentMap
+EMITTER_TYPES = (PointLight, SpotLight, DirectionalLight, ConstantEnvironment, EnvironmentMap)
+#: The emitters at infinity (the bounding sphere of the scene sets their light subpaths' start).
+INFINITE = (DirectionalLight, ConstantEnvironment, EnvironmentMap)

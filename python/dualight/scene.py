@@ -29,7 +29,8 @@ from typing import TYPE_CHECKING, Any, Literal, ParamSpec, TypeVar
 
 import numpy as np
 
-from dualight.emitters import PointLight, SpotLight
+from dualight.emitters import EMITTER_TYPES as _EMITTER_TYPES
+from dualight.emitters import Emitter
 from dualight.materials import Diffuse, Material
 
 if TYPE_CHECKING:
@@ -354,7 +355,7 @@ class Scene:
             raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
         self._camera = camera
         self._meshes: list[Mesh] = []
-        self._emitters: list[PointLight | SpotLight] = []
+        self._emitters: list[Emitter] = []
         self._compiled: _core.Scene | None = None
         # Camera origins (None: no camera) the emitters were checked against (render time).
         self._checked_facing: set[Vec3 | None] = set()
@@ -403,24 +404,36 @@ class Scene:
         return sum(len(m.triangles) for m in self._meshes)
 
     @property
-    def emitters(self) -> tuple[PointLight | SpotLight, ...]:
-        """The emitters without a surface (point and spot lights) in the order they were
-        added; area lights are the meshes with emission."""
+    def emitters(self) -> tuple[Emitter, ...]:
+        """The emitters without a surface (point, spot and directional lights, environments) in
+        the order they were added; area lights are the meshes with emission."""
         return tuple(self._emitters)
 
     @property
     def has_emitters(self) -> bool:
-        """Whether some mesh emits or the scene has a point or spot light."""
+        """Whether some mesh emits or the scene has an emitter without a surface."""
         return bool(self._emitters) or any(m.is_emitter for m in self._meshes)
 
-    def add_emitter(self, emitter: PointLight | SpotLight) -> int:
-        """Add a point or spot light (:mod:`dualight.emitters`); returns its index in
-        :attr:`emitters`. Radiosity refuses scenes with them (it takes emission from patches
-        only)."""
-        if not isinstance(emitter, PointLight | SpotLight):
+    def add_emitter(self, emitter: Emitter) -> int:
+        """Add a point, spot or directional light or an environment (:mod:`dualight.emitters`);
+        returns its index in :attr:`emitters`. Radiosity's uniform solvers take point, spot and
+        directional lights as a first shot; hierarchical radiosity refuses them all, and every
+        radiosity solver refuses environments."""
+        if not isinstance(emitter, _EMITTER_TYPES):
             raise TypeError(
-                "emitter must be a dualight.PointLight or dualight.SpotLight, got "
-                f"{type(emitter).__name__} (area lights are meshes with emission)"
+                "emitter must be a dualight.PointLight, SpotLight, DirectionalLight, "
+                f"ConstantEnvironment or EnvironmentMap, got {type(emitter).__name__} (area lights "
+                "are meshes with emission)"
+            )
+        from dualight.emitters import ConstantEnvironment, EnvironmentMap
+
+        environments = ConstantEnvironment | EnvironmentMap
+        if isinstance(emitter, environments) and any(
+            isinstance(e, environments) for e in self._emitters
+        ):
+            raise ValueError(
+                "the scene has an environment already: a scene takes one (constant or envmap), "
+                "as in Mitsuba 3"
             )
         with self._lock:
             self._refuse_while_in_use("add_emitter")

@@ -18,7 +18,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from dualight.emitters import PointLight, SpotLight
+from dualight.emitters import (
+    ConstantEnvironment,
+    DirectionalLight,
+    EnvironmentMap,
+    PointLight,
+    SpotLight,
+)
 from dualight.materials import (
     Conductor,
     Dielectric,
@@ -125,7 +131,17 @@ CORNELL_VARIANTS = (
     "textured",
     "point",
     "spot",
+    "sun",
+    "sky",
+    "envmap",
 )
+_OPEN_TOP = ("sun", "sky", "envmap")
+# The open-top variants' lights: a sun 28 degrees from the zenith, leaning towards the green
+# wall and the back (the blocks' shadows fall on the floor), a pale blue sky, and an
+# environment image of such a sky with a sun in it (cornell_sky_image).
+_CORNELL_SUN_DIRECTION = (-0.35, -1.0, 0.35)
+_CORNELL_SUN_IRRADIANCE = (3.0, 2.8, 2.4)
+_CORNELL_SKY_RADIANCE = (0.6, 0.75, 1.0)
 # The "point" and "spot" variants' lights, below the ceiling light's centre (which stays, not
 # emitting): the point light 100 mm below it (closer, the ceiling's 1 / r^2 hot spot made the
 # path tracer's estimates heavy-tailed), the spot 10 mm below, shining down. The point light's
@@ -151,6 +167,7 @@ def cornell_box(
     sphere_normals: bool = True,
     texture_shift: float = 0.0,
     spot_cutoff: float = 50.0,
+    env_rotation: float = 0.0,
 ) -> Scene:
     """The Cornell box (measured geometry and camera; Mitsuba 3's RGB materials).
 
@@ -197,7 +214,12 @@ def cornell_box(
         :class:`~dualight.PointLight` (of the area light's flux) or a
         :class:`~dualight.SpotLight` (cutoff ``spot_cutoff`` degrees, beam width three
         quarters of it, leaning towards the red wall and the back) 100 mm and 10 mm below the
-        ceiling light's centre, which stays as a non-emitting patch.
+        ceiling light's centre, which stays as a non-emitting patch. ``"sun"``, ``"sky"`` and
+        ``"envmap"``: the classic box without its ceiling and light, open at the top to a
+        :class:`~dualight.DirectionalLight` (irradiance (3, 2.8, 2.4) W/m^2, travelling along
+        (-0.35, -1, 0.35)), a :class:`~dualight.ConstantEnvironment` (radiance (0.6, 0.75, 1))
+        or an :class:`~dualight.EnvironmentMap` of :func:`cornell_sky_image` (a sky with a sun
+        in it), each times ``light_scale``.
     ior : float, optional
         The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
         the material accepts).
@@ -212,12 +234,16 @@ def cornell_box(
         half a texel of the back wall; a negative control), finite.
     spot_cutoff : float, optional
         The ``"spot"`` variant's cutoff angle in degrees, in (0, 90].
+    env_rotation : float, optional
+        Turns the ``"envmap"`` variant's environment about the y axis by this many degrees (a
+        negative control), finite.
 
     Returns
     -------
     Scene
         Meshes ``floor``, ``ceiling``, ``back_wall``, ``green_wall``, ``red_wall``, then
-        ``short_block`` and ``tall_block`` (classic), ``mirror_sphere`` and ``glass_sphere``
+        ``short_block`` and ``tall_block`` (classic; the open-top variants have no
+        ``ceiling`` and no ``light``), ``mirror_sphere`` and ``glass_sphere``
         (caustics), ``gold_sphere`` and ``frosted_sphere`` (glossy), ``copper_sphere`` and
         ``bubble`` (coated) or ``white_sphere`` and ``glass_sphere`` (smooth), then ``light``.
 
@@ -244,10 +270,12 @@ def cornell_box(
         raise ValueError(f"cornell_box: roughness_scale must be in (0, 4], got {roughness_scale!r}")
     if not math.isfinite(float(texture_shift)):
         raise ValueError(f"cornell_box: texture_shift must be finite, got {texture_shift!r}")
+    if not math.isfinite(float(env_rotation)):
+        raise ValueError(f"cornell_box: env_rotation must be finite, got {env_rotation!r}")
     if not 0.0 < float(spot_cutoff) <= 90.0:
         raise ValueError(f"cornell_box: spot_cutoff must be in (0, 90], got {spot_cutoff!r}")
     textures = _cornell_textures(float(texture_shift)) if variant == "textured" else {}
-    spheres = variant not in ("classic", "textured", "point", "spot")
+    spheres = variant not in ("classic", "textured", "point", "spot", *_OPEN_TOP)
     if variant == "glossy":
         a = float(roughness_scale)
         sphere_materials: tuple[Material, Material] = (
@@ -277,7 +305,7 @@ def cornell_box(
         "tall_block": CORNELL_WHITE,
     }
     for name, rho in materials.items():
-        if name.endswith("block") and spheres:
+        if (name.endswith("block") and spheres) or (name == "ceiling" and variant in _OPEN_TOP):
             continue
         quads = [np.array(q, dtype=np.float64) for q in _CORNELL_QUADS[name]]
         if name.endswith("block"):
@@ -318,6 +346,9 @@ def cornell_box(
                 continue
             v, f = icosphere(centre, radius, _CORNELL_SPHERE_SUBDIVISIONS)
             scene.add_mesh(v, f, material=material, name=name)
+    if variant in _OPEN_TOP:
+        scene.add_emitter(_open_top_light(variant, light_scale, float(env_rotation)))
+        return scene
     light = _orient(np.array(_CORNELL_LIGHT), _CORNELL_ROOM_CENTRE, inward=True)
     v, f = _quads_mesh([light])
     point_lit = variant in ("point", "spot")
@@ -345,6 +376,40 @@ def cornell_box(
             )
         )
     return scene
+
+
+def cornell_sky_image(width: int = 64, height: int = 32) -> np.ndarray:
+    """The ``"envmap"`` Cornell variant's environment, ``(height, width, 3)`` linear radiance
+    in Mitsuba's latitude-longitude layout: a sky brightening from a pale horizon to a blue
+    zenith, a dark ground below the horizon, and a sun of radiance 60 about 6 degrees across,
+    30 degrees from the zenith towards -z (behind the camera: through the open top it lights
+    the back wall and the blocks' fronts)."""
+    v = (np.arange(height) + 0.0) / (height - 1)  # rows sit at theta = pi v
+    u = (np.arange(width) + 0.5) / width  # columns at their centres
+    theta, phi = np.meshgrid(np.pi * v, 2 * np.pi * u, indexing="ij")
+    d = np.stack([np.sin(phi) * np.sin(theta), np.cos(theta), -np.cos(phi) * np.sin(theta)], -1)
+    up = np.clip(d[..., 1], 0.0, 1.0)[..., None]
+    sky = (1 - up) * np.array([0.9, 0.9, 0.85]) + up * np.array([0.25, 0.45, 0.9])
+    ground = np.array([0.2, 0.18, 0.15])
+    img = np.where(d[..., 1:2] > 0, sky, ground)
+    sun = np.array([0.0, math.cos(math.radians(30)), -math.sin(math.radians(30))])
+    img = img + 60.0 * (d @ sun > math.cos(math.radians(6)))[..., None]
+    return img.astype(np.float32)
+
+
+def _open_top_light(
+    variant: str, scale: float, rotation: float
+) -> DirectionalLight | ConstantEnvironment | EnvironmentMap:
+    """The light of an open-top Cornell variant, times ``scale``."""
+    if variant == "sun":
+        return DirectionalLight(
+            _CORNELL_SUN_DIRECTION, tuple(scale * c for c in _CORNELL_SUN_IRRADIANCE)
+        )
+    if variant == "sky":
+        return ConstantEnvironment(tuple(scale * c for c in _CORNELL_SKY_RADIANCE))
+    a = math.radians(rotation)
+    turn = [[math.cos(a), 0.0, math.sin(a)], [0.0, 1.0, 0.0], [-math.sin(a), 0.0, math.cos(a)]]
+    return EnvironmentMap(data=cornell_sky_image(), scale=scale, to_world=turn)
 
 
 def _cornell_textures(shift: float) -> dict[str, Material]:

@@ -13,8 +13,9 @@ struct Point2 {
   float u, v;
 };
 
-// Cosine-weighted hemisphere around +z (Malley's method on a concentric disk [Shirley-Chiu 1997]).
-inline Vec3 square_to_cosine_hemisphere(Point2 p) {
+// Uniform points on the unit disk, Shirley and Chiu's concentric map [Shirley-Chiu 1997];
+// density 1 / pi.
+inline Point2 square_to_uniform_disk(Point2 p) {
   const float a = 2.f * p.u - 1.f, b = 2.f * p.v - 1.f;
   float r = 0.f, phi = 0.f;
   if (a != 0.f || b != 0.f) {
@@ -26,8 +27,13 @@ inline Vec3 square_to_cosine_hemisphere(Point2 p) {
       phi = (kPi / 2.f) - (kPi / 4.f) * (a / b);
     }
   }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
-  return {x, y, std::sqrt(std::max(0.f, 1.f - x * x - y * y))};
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+// Cosine-weighted hemisphere around +z (Malley's method on the concentric disk).
+inline Vec3 square_to_cosine_hemisphere(Point2 p) {
+  const Point2 d = square_to_uniform_disk(p);
+  return {d.u, d.v, std::sqrt(std::max(0.f, 1.f - d.u * d.u - d.v * d.v))};
 }
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? cos_theta * kInvPi : 0.f; }
 

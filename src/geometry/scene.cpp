@@ -88,10 +88,17 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     if (has_any(flags(e), EmitterFlags::Surface)) {
       throw std::invalid_argument("surface emitters come from the materials' emission, not the emitter list");
     }
+    attach_scene(e, bounding_sphere(bounds_min_, bounds_max_));
     const double p = power(e);
     if (!(p >= 0.0 && std::isfinite(p))) throw std::invalid_argument("emitter power must be finite and >= 0");
     emitters_.push_back(std::move(e));
   }
+  for (const Emitter& e : emitters_) {
+    if (is_infinite(e) && !is_delta_direction(e)) environment_.push_back(&e);
+  }
+  // As Mitsuba 3 ("Only one environment emitter can be specified per scene"): the sky a ray
+  // escapes to is one emitter, whose density BDPT's vertex at infinity carries.
+  if (environment_.size() > 1) throw std::invalid_argument("a scene takes one environment (constant or envmap)");
   emitter_sampler_ = PowerEmitterSampler(emitters_);
   MaterialFeatures used;
   for (const uint32_t m : material_of_) {

@@ -96,6 +96,10 @@ class Scene {
     const uint32_t i = emitter_of_prim_[prim];
     return i == kNoEmitter ? nullptr : &emitters_[i];
   }
+  // The emitter at infinity that rays leaving the scene see (a constant or image environment; at
+  // most one, as in Mitsuba), a pointer into emitters(); empty in most scenes, which then look
+  // nothing up on a miss.
+  const std::vector<const Emitter*>& environment() const { return environment_; }
   // Power-proportional choice of an emitter (there must be some), and its probability for `e`.
   EmitterChoice choose_emitter(float u) const {
     const size_t i = emitter_sampler_.sample(u);
@@ -153,6 +157,7 @@ class Scene {
   static constexpr uint32_t kNoEmitter = 0xffffffffu;
   std::vector<Emitter> emitters_;           // one AreaEmitter per emissive triangle, in triangle order
   std::vector<uint32_t> emitter_of_prim_;   // index into emitters_, kNoEmitter for the others
+  std::vector<const Emitter*> environment_;  // into emitters_ (fixed after construction)
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
   float offset_scale_ = 1.f;

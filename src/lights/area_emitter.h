@@ -69,7 +69,7 @@ inline bool sample_Li(const AreaEmitter& e, float pmf, const Vec3& ref, Point2 u
 }
 // Solid-angle density of sample_Li finding the emitter point at distance `dist` whose normal
 // makes cosine `cos_light` with the direction to the reference point.
-inline float pdf_Li(const AreaEmitter& e, float pmf, float dist, float cos_light) {
+inline float pdf_Li(const AreaEmitter& e, float pmf, const Vec3&, float dist, float cos_light) {
   return pdf_Le_position(e, pmf) * dist * dist / cos_light;
 }
 

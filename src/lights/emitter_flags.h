@@ -19,5 +19,9 @@ constexpr bool has_any(EmitterFlags f, EmitterFlags of) {
 }
 constexpr bool is_delta_position(EmitterFlags f) { return has_any(f, EmitterFlags::DeltaPosition); }
 constexpr bool is_delta_direction(EmitterFlags f) { return has_any(f, EmitterFlags::DeltaDirection); }
+constexpr bool is_delta_light(EmitterFlags f) {
+  return has_any(f, static_cast<EmitterFlags>(static_cast<uint8_t>(EmitterFlags::DeltaPosition) |
+                                              static_cast<uint8_t>(EmitterFlags::DeltaDirection)));
+}
 
 }  // namespace dualight

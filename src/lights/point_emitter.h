@@ -54,6 +54,6 @@ inline bool sample_Li(const PointEmitter& e, float pmf, const Vec3& ref, Point2,
   return true;
 }
 // No path finds a point by chance.
-inline float pdf_Li(const PointEmitter&, float, float, float) { return 0.f; }
+inline float pdf_Li(const PointEmitter&, float, const Vec3&, float, float) { return 0.f; }
 
 }  // namespace dualight

@@ -69,6 +69,6 @@ inline bool sample_Li(const SpotEmitter& e, float pmf, const Vec3& ref, Point2, 
   s.on_surface = false;
   return true;
 }
-inline float pdf_Li(const SpotEmitter&, float, float, float) { return 0.f; }
+inline float pdf_Li(const SpotEmitter&, float, const Vec3&, float, float) { return 0.f; }
 
 }  // namespace dualight

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/distribution.h"
+#include "pathspace/emitter_support.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
@@ -253,6 +254,7 @@ Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOpt
 
 // One population of every path length: the chains that found a start path share the mutations.
 void check_path_space_supports(const Scene& scene) {
+  require_light_subpaths(scene, "mlt", false);
   // A path's vertices are specular or not by their BSDF (full_path.h), so a path through the
   // Dirac lobe of a BSDF that also has a diffuse or glossy one would be evaluated without it.
   if (scene.features().mixed_delta) {

@@ -23,8 +23,23 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
   if (is_black(Le)) return Color(0.f);
   if (prev_delta) return beta * Le;
   const float cos_light = std::abs(dot(hit.n, wo_world));
-  const float pdf_light_w = pdf_Li(e, scene.emitter_pmf(e), hit.t, cos_light);
+  const float pdf_light_w = pdf_Li(e, scene.emitter_pmf(e), -wo_world, hit.t, cos_light);
   return beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
+}
+
+// Radiance of the environment a ray along unit d escaped to, weighted against next-event
+// estimation as emission_seen, times beta.
+inline Color environment_seen(const Scene& scene, const Vec3& d, const Color& beta, float prev_pdf_w,
+                              bool prev_delta) {
+  Color L(0.f);
+  for (const Emitter* e : scene.environment()) {
+    const Color Le = radiance(*e, -d);
+    if (is_black(Le)) continue;
+    const float weight =
+        prev_delta ? 1.f : power_heuristic(prev_pdf_w, pdf_Li(*e, scene.emitter_pmf(*e), d, 0.f, 1.f));
+    L += Le * weight;
+  }
+  return beta * L;
 }
 
 // Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
@@ -44,9 +59,9 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
     return Color(0.f);
   }
   const float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
-  // A delta-position emitter (a point light) is found by no BSDF sample: its sample keeps full
-  // weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
-  const float weight = is_delta_position(*choice.emitter) ? 1.f : power_heuristic(ls.pdf_w, pdf_bsdf_w);
+  // A delta emitter (a point light, a direction) is found by no BSDF sample: its sample keeps
+  // full weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
+  const float weight = is_delta_light(*choice.emitter) ? 1.f : power_heuristic(ls.pdf_w, pdf_bsdf_w);
   return beta * f * ls.Le * (std::abs(dot(ls.wi, hit.ns)) * weight / ls.pdf_w);
 }
 
@@ -65,7 +80,10 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
   for (int depth = 1; depth_allows(depth); ++depth) {
     SurfaceHit hit;
     ++counters.rays;
-    if (!scene.intersect(ray, hit)) break;
+    if (!scene.intersect(ray, hit)) {
+      if (!scene.environment().empty()) L += environment_seen(scene, ray.d, beta, prev_pdf_w, prev_delta);
+      break;
+    }
 
     const Vec3 wo_world = -ray.d;
     if (hit.emitter != nullptr) L += emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta);

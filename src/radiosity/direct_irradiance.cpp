@@ -21,15 +21,15 @@ std::vector<Point2> centroid_grid(int n) {
   return out;
 }
 
-// Irradiance at p (on a patch of normal n, either side) from one point emitter, visibility
-// included.
+// Irradiance at p (on a patch of normal n) from one delta emitter, visibility included. Patches
+// are one-sided, as the form factors and Mitsuba's diffuse BSDF: light behind the patch (a sun
+// on a wall's outside) does not count.
 Color irradiance_from(const Scene& scene, const Emitter& e, const Vec3& p, const Vec3& n) {
   LightSample ls;
   if (!sample_Li(e, 1.f, p, {0.5f, 0.5f}, ls)) return Color(0.f);
   const float cos_theta = dot(n, ls.wi);
-  if (cos_theta == 0.f) return Color(0.f);
-  const Vec3 side = cos_theta > 0.f ? n : -n;
-  return scene.visible_point(p, side, ls.p) ? ls.Le * std::abs(cos_theta) : Color(0.f);
+  if (!(cos_theta > 0.f)) return Color(0.f);
+  return scene.visible_point(p, n, ls.p) ? ls.Le * cos_theta : Color(0.f);
 }
 
 }  // namespace
@@ -39,7 +39,7 @@ std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, 
   if (points_per_axis < 1 || points_per_axis > 64) throw std::invalid_argument("points_per_axis must be in [1, 64]");
   std::vector<const Emitter*> points;
   for (const Emitter& e : patches.emitters()) {
-    if (is_delta_position(e)) points.push_back(&e);
+    if (is_delta_light(e)) points.push_back(&e);
   }
   const size_t n = patches.triangle_count();
   std::vector<Color> H(n, Color(0.f));

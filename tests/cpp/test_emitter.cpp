@@ -1,12 +1,17 @@
 // Emitters as a closed set (lights/): flags, the area emitter's densities against each other,
-// and the scene's power-proportional choice.
+// and the scene's power-proportional choice; the members at infinity (directional, constant,
+// envmap), with a chi-square test of the environment map's sampling.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "check.h"
 #include "geometry/scene.h"
 #include "lights/emitter.h"
 #include "lights/emitter_sampler.h"
+#include "lights/environment_map.h"
 
 using namespace dualight;
 
@@ -37,7 +42,7 @@ TEST_CASE("area_emitter_densities_agree") {
     REQUIRE(sample_Li(e, pmf, ref, u, ls));
     CHECK(ls.on_surface);
     const float dist = std::sqrt(ls.dist2), cos_light = -dot(ls.n, ls.wi);
-    CHECK_NEAR(ls.pdf_w / pdf_Li(e, pmf, dist, cos_light), 1.f, 1e-5f);
+    CHECK_NEAR(ls.pdf_w / pdf_Li(e, pmf, ls.wi, dist, cos_light), 1.f, 1e-5f);
     CHECK_NEAR(length(ref + ls.wi * dist - ls.p), 0.f, 1e-5f);
     const EmitterPoint y = sample_Le_position(e, pmf, u);
     CHECK(y.pdf_a == pdf_Le_position(e, pmf));
@@ -92,7 +97,7 @@ TEST_CASE("point_emitter_is_a_delta_position_with_intensity_over_r2") {
   CHECK(ls.pdf_w == 0.5f);  // the choice's probability
   CHECK_NEAR(ls.Le.x, 4.f / 4.f, 1e-6f);  // I / r^2, r = 2
   CHECK_NEAR(ls.wi.z, 1.f, 1e-6f);
-  CHECK(pdf_Li(e, 0.5f, 2.f, 1.f) == 0.f);  // no path hits it
+  CHECK(pdf_Li(e, 0.5f, Vec3(0.f, 0.f, 1.f), 2.f, 1.f) == 0.f);  // no path hits it
   const EmitterPoint y = sample_Le_position(e, 0.5f, {0.1f, 0.9f});
   CHECK((!y.on_surface && y.pdf_a == 0.5f));
   // Light subpaths leave uniformly: beta = I / (pmf / (4 pi)), every direction.
@@ -136,4 +141,180 @@ TEST_CASE("spot_emitter_falls_off_as_mitsuba_and_samples_its_cone") {
   CHECK(sample_Li(e, 1.f, Vec3(0.f, 0.f, -2.f), {0.5f, 0.5f}, ls));  // on the axis
   CHECK_NEAR(ls.Le.x, 3.f / 4.f, 1e-6f);
   CHECK(!sample_Li(e, 1.f, Vec3(0.f, 0.f, 2.f), {0.5f, 0.5f}, ls));  // behind it: no light
+}
+
+namespace {
+
+// A 12 x 7 map: a dim sky brightening towards the zenith, a bright sun-like patch, one black
+// cell row near the south pole (whose directions the sampler must never pick).
+EnvironmentMap test_map(const Frame& to_world = Frame{Vec3(1.f, 0.f, 0.f), Vec3(0.f, 1.f, 0.f), Vec3(0.f, 0.f, 1.f)}) {
+  const uint32_t w = 12, h = 7;
+  std::vector<float> rgb(3 * w * h);
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x) {
+      const float sky = y >= h - 2 ? 0.f : 0.2f + 0.1f * static_cast<float>(h - y);
+      const float sun = (x == 3 && y == 2) ? 40.f : 0.f;
+      float* p = &rgb[3 * (y * w + x)];
+      p[0] = sky + sun;
+      p[1] = 0.5f * sky + sun;
+      p[2] = 0.25f * sky;
+    }
+  }
+  return EnvironmentMap(w, h, rgb, 1.5f, to_world);
+}
+
+// Pearson's chi-square of `counts` against `expected` (bins with expected < 5 pooled) and its
+// degrees of freedom.
+std::pair<double, int> chi_square(const std::vector<double>& counts, const std::vector<double>& expected) {
+  double stat = 0.0, pool_c = 0.0, pool_e = 0.0;
+  int bins = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (expected[i] < 5.0) {
+      pool_c += counts[i];
+      pool_e += expected[i];
+      continue;
+    }
+    stat += (counts[i] - expected[i]) * (counts[i] - expected[i]) / expected[i];
+    ++bins;
+  }
+  if (pool_e > 0.0) {
+    stat += (pool_c - pool_e) * (pool_c - pool_e) / std::max(pool_e, 1e-12);
+    ++bins;
+  }
+  return {stat, bins - 1};
+}
+
+// The chi-square quantile at 1 - 1e-4 (Wilson-Hilferty; z = 3.719).
+double chi_square_limit(int dof) {
+  const double k = dof, z = 3.719;
+  const double c = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+  return k * c * c * c;
+}
+
+// Sampled directions binned on a (phi, cos theta) grid against `pdf` integrated over each bin.
+template <class Pdf>
+std::pair<double, int> env_sampling_chi_square(const EnvironmentMap& map, const Pdf& pdf) {
+  constexpr int kPhi = 24, kCos = 16, kSub = 32;
+  constexpr size_t kSamples = 400000;
+  const auto bin_of = [&](const Vec3& d) {
+    float phi = std::atan2(d.y, d.x);
+    if (phi < 0.f) phi += 2.f * kPi;
+    const int i = std::min(static_cast<int>(phi / (2.f * kPi) * kPhi), kPhi - 1);
+    const int j = std::min(static_cast<int>((d.z + 1.f) * 0.5f * kCos), kCos - 1);
+    return static_cast<size_t>(j * kPhi + i);
+  };
+  std::vector<double> counts(kPhi * kCos, 0.0), expected(kPhi * kCos, 0.0);
+  uint64_t state = 0x853c49e6748fea9bull;
+  const auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<float>(state >> 40) * 0x1p-24f;
+  };
+  for (size_t k = 0; k < kSamples; ++k) {
+    float p = 0.f;
+    const Vec3 d = map.sample({next(), next()}, p);
+    counts[bin_of(d)] += 1.0;
+  }
+  // Midpoint rule on kSub x kSub points per bin (uniform in phi and z: equal solid angles).
+  const double cell = 4.0 * kPi / (kPhi * kCos * kSub * kSub);
+  for (int j = 0; j < kCos * kSub; ++j) {
+    const float z = -1.f + 2.f * (static_cast<float>(j) + 0.5f) / (kCos * kSub);
+    const float r = std::sqrt(std::max(0.f, 1.f - z * z));
+    for (int i = 0; i < kPhi * kSub; ++i) {
+      const float phi = 2.f * kPi * (static_cast<float>(i) + 0.5f) / (kPhi * kSub);
+      const Vec3 d(r * std::cos(phi), r * std::sin(phi), z);
+      expected[bin_of(d)] += pdf(d) * cell * kSamples;
+    }
+  }
+  return chi_square(counts, expected);
+}
+
+}  // namespace
+
+TEST_CASE("directional_emitter_is_a_delta_direction_at_infinity") {
+  DirectionalEmitter d = make_directional(Vec3(0.f, 0.f, -2.f), Color(3.f, 2.f, 1.f));
+  attach_scene(d, BoundingSphere{Vec3(1.f, 0.f, 0.f), 2.f});
+  const Emitter e = d;
+  CHECK((is_delta_direction(e) && is_infinite(e) && is_delta_light(e) && !is_delta_position(e)));
+  CHECK_NEAR(power(e), 4.0 * 2.0, 1e-5);  // r^2 times the mean irradiance
+  LightSample ls;
+  REQUIRE(sample_Li(e, 0.5f, Vec3(1.5f, 0.f, 0.5f), {0.3f, 0.7f}, ls));
+  CHECK((!ls.on_surface && ls.pdf_w == 0.5f && ls.Le.x == 3.f));
+  CHECK_NEAR(ls.wi.z, 1.f, 1e-6f);
+  CHECK(length(ls.p - Vec3(1.f, 0.f, 0.f)) > 2.f);  // the shadow ray ends beyond the sphere
+  CHECK(pdf_Li(e, 0.5f, ls.wi, 1.f, 1.f) == 0.f);
+  // Light subpaths: uniform on the disk of radius r behind the sphere, then along the direction.
+  const EmitterPoint y = sample_Le_position(e, 0.5f, {0.9f, 0.1f});
+  CHECK_NEAR(y.p.z, 2.f, 1e-5f);
+  CHECK(length(y.p - Vec3(1.f, 0.f, 2.f)) <= 2.f + 1e-5f);
+  CHECK_NEAR(y.pdf_a, 0.5f / (kPi * 4.f), 1e-7f);
+  EmitterDirection dir;
+  REQUIRE(sample_Le_direction(e, y.pdf_a, {0.2f, 0.2f}, dir));
+  CHECK_NEAR(dir.w.z, -1.f, 1e-6f);
+  CHECK_NEAR(dir.beta.x, 3.f / y.pdf_a, 1e-3f);  // flux through the disk / (pdf of its point)
+}
+
+TEST_CASE("constant_emitter_samples_the_sphere_and_knows_its_density") {
+  ConstantEmitter c{Color(0.5f), {}};
+  attach_scene(c, BoundingSphere{Vec3(0.f), 3.f});
+  const Emitter e = c;
+  CHECK((is_infinite(e) && !is_delta_light(e)));
+  CHECK_NEAR(power(e), 4.0 * kPi * 9.0 * 0.5, 1e-4);
+  LightSample ls;
+  REQUIRE(sample_Li(e, 0.25f, Vec3(0.f, 1.f, 0.f), {0.2f, 0.9f}, ls));
+  CHECK_NEAR(ls.pdf_w, 0.25f / (4.f * kPi), 1e-7f);
+  CHECK(ls.pdf_w == pdf_Li(e, 0.25f, ls.wi, 0.f, 1.f));
+  CHECK(length(ls.p) > 3.f);
+}
+
+TEST_CASE("envmap_uses_mitsubas_lat_long_conventions") {
+  const EnvironmentMap map = test_map();
+  // Texel (x, y) sits at u = (x + 0.5) / width, v = y / (height - 1); direction
+  // (sin phi sin theta, cos theta, -cos phi sin theta) for phi = 2 pi u, theta = pi v.
+  const auto direction = [](float u, float v) {
+    const float phi = 2.f * kPi * u, theta = kPi * v;
+    return Vec3(std::sin(phi) * std::sin(theta), std::cos(theta), -std::cos(phi) * std::sin(theta));
+  };
+  const Color sun = map.eval(direction(3.5f / 12.f, 2.f / 6.f));
+  CHECK_NEAR(sun.x, 1.5f * (40.f + 0.2f + 0.1f * 5.f), 1e-3f);
+  // Halfway to the next column: the mean of the two texels.
+  const Color half = map.eval(direction(4.f / 12.f, 2.f / 6.f));
+  CHECK_NEAR(half.x, 1.5f * (20.f + 0.2f + 0.1f * 5.f), 1e-3f);
+  // Rotated: the map's frame carried along.
+  const Frame turn{Vec3(0.f, 0.f, 1.f), Vec3(0.f, 1.f, 0.f), Vec3(-1.f, 0.f, 0.f)};  // +90 degrees about y
+  const EnvironmentMap rotated = test_map(turn);
+  const Vec3 d = direction(3.5f / 12.f, 2.f / 6.f);
+  CHECK_NEAR(rotated.eval(turn.to_world(d)).x, sun.x, 1e-3f);
+  CHECK(rotated.eval(d).x < 0.5f * sun.x);
+}
+
+TEST_CASE("envmap_sampling_matches_its_density_chi_square") {
+  const EnvironmentMap map = test_map();
+  // Its density integrates to one and agrees with what sample() reports.
+  float p = 0.f;
+  for (const Point2 u : {Point2{0.1f, 0.3f}, Point2{0.6f, 0.27f}, Point2{0.95f, 0.5f}}) {
+    const Vec3 d = map.sample(u, p);
+    CHECK_NEAR(p / map.pdf(d), 1.f, 1e-3f);
+    CHECK(!is_black(map.eval(d)));
+  }
+  const auto [stat, dof] = env_sampling_chi_square(map, [&](const Vec3& d) { return map.pdf(d); });
+  MESSAGE("chi-square " << stat << " with " << dof << " degrees of freedom, limit " << chi_square_limit(dof));
+  CHECK(stat < chi_square_limit(dof));
+  // Negative control: the samples against the density of the map turned by 90 degrees fail.
+  const Frame turn{Vec3(0.f, 0.f, 1.f), Vec3(0.f, 1.f, 0.f), Vec3(-1.f, 0.f, 0.f)};
+  const EnvironmentMap rotated = test_map(turn);
+  const auto [wrong, wrong_dof] = env_sampling_chi_square(map, [&](const Vec3& d) { return rotated.pdf(d); });
+  CHECK(wrong > chi_square_limit(wrong_dof));
+}
+
+TEST_CASE("envmap_rejects_bad_images") {
+  const Frame id{Vec3(1.f, 0.f, 0.f), Vec3(0.f, 1.f, 0.f), Vec3(0.f, 0.f, 1.f)};
+  CHECK_THROWS_AS(EnvironmentMap(2, 2, std::vector<float>(12, 0.f), 1.f, id), std::invalid_argument);  // black
+  CHECK_THROWS_AS(EnvironmentMap(2, 2, std::vector<float>(11, 1.f), 1.f, id), std::invalid_argument);
+  std::vector<float> nan(12, 1.f);
+  nan[4] = std::nanf("");
+  CHECK_THROWS_AS(EnvironmentMap(2, 2, nan, 1.f, id), std::invalid_argument);
+  // A 1 x 1 image is padded to 2 x 3, as Mitsuba: a constant environment.
+  const EnvironmentMap one(1, 1, {0.5f, 0.5f, 0.5f}, 2.f, id);
+  CHECK_NEAR(one.eval(Vec3(0.3f, 0.8f, 0.52f) / length(Vec3(0.3f, 0.8f, 0.52f))).x, 1.f, 1e-6f);
+  CHECK_NEAR(one.mean_radiance(), 1.0, 1e-5);
 }

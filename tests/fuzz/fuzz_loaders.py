@@ -15,7 +15,9 @@ starts from real headers.
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import sys
 import tempfile
 import warnings
@@ -34,6 +36,9 @@ ROOM_XML = Path(__file__).resolve().parents[1] / "data" / "room.xml"
 QUAD_OBJ = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n"
 ACCEPTED = (ValueError, TypeError, FileNotFoundError, RuntimeError)
 _TMP = Path(tempfile.mkdtemp(prefix="dualight-fuzz-"))
+# Removed at a normal exit; libFuzzer ends with C exit(), which skips this, so test_fuzz.py runs
+# the target with TMPDIR in its pytest tmp_path (100 runs had left their folders in /tmp).
+atexit.register(shutil.rmtree, _TMP, ignore_errors=True)
 
 
 def load(data: bytes) -> dualight.Image | dualight.Scene:

@@ -52,6 +52,7 @@ def test_fuzz_short(target: str, tmp_path: Path) -> None:
         [sys.executable, str(TARGETS[target]), f"-max_total_time={seconds}", f"-seed={seed}",
          "-rss_limit_mb=4096", "-timeout=60", f"-artifact_prefix={tmp_path}/", str(corpus)],
         capture_output=True, text=True, timeout=seconds + 180,
+        env={**os.environ, "TMPDIR": str(tmp_path)},  # the targets' temporary files go with it
     )
     runs = re.findall(r"Done (\d+) runs", result.stderr)
     assert result.returncode == 0 and runs, result.stderr[-3000:]

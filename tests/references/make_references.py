@@ -41,6 +41,8 @@ The references (see README.md beside them for how long they took):
 * ``textured_64``: ``cornell_box(resolution=(64, 64), variant="textured")`` (a bitmap back
   wall, a checkerboard floor, an aluminium block of checkerboard roughness), ``max_depth=8``,
   ``rr_depth=5``.
+* ``sun_64``, ``sky_64``, ``envmap_64``: the open-top box lit by a directional light, a
+  constant environment and an environment map (``cornell_box(variant=...)``).
 * ``point_64``, ``spot_64``: ``cornell_box(resolution=(64, 64), variant="point")`` and
   ``variant="spot"`` (the classic box lit by a point light or a spot light below the ceiling),
   ``max_depth=8``, ``rr_depth=5``.
@@ -151,6 +153,27 @@ def _references() -> dict[str, Reference]:
             "spot_64",
             'cornell_box(resolution=(64, 64), variant="spot")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="spot"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "sun_64",
+            'cornell_box(resolution=(64, 64), variant="sun")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="sun"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "sky_64",
+            'cornell_box(resolution=(64, 64), variant="sky")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="sky"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "envmap_64",
+            'cornell_box(resolution=(64, 64), variant="envmap")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="envmap"),
             spp=131072,
             max_depth=8,
         ),

@@ -10,7 +10,13 @@ from typing import Any
 
 import numpy as np
 
-from dualight.emitters import PointLight, SpotLight
+from dualight.emitters import (
+    ConstantEnvironment,
+    DirectionalLight,
+    Emitter,
+    EnvironmentMap,
+    PointLight,
+)
 from dualight.io._common import PathLike
 from dualight.materials import Material
 from dualight.scene import Scene
@@ -89,8 +95,30 @@ def _write_bsdf(
     _write_plugin(parent, "bsdf", material._mitsuba_bsdf(), save_texels=save_texels)
 
 
-def _write_emitter(root: ET.Element, light: PointLight | SpotLight) -> None:
-    """A point or spot light as Mitsuba 3's stand-alone emitter."""
+def _write_emitter(
+    root: ET.Element, light: Emitter, save_texels: Callable[[np.ndarray], str]
+) -> None:
+    """An emitter without a surface as Mitsuba 3's stand-alone emitter (an environment map made
+    from an array writes its image through ``save_texels``)."""
+    if isinstance(light, DirectionalLight):
+        emitter = _element(root, "emitter", type="directional")
+        _element(emitter, "vector", name="direction", value=_fmt(light.direction))
+        _element(emitter, "rgb", name="irradiance", value=_fmt(light.irradiance))
+        return
+    if isinstance(light, ConstantEnvironment):
+        emitter = _element(root, "emitter", type="constant")
+        _element(emitter, "rgb", name="radiance", value=_fmt(light.radiance))
+        return
+    if isinstance(light, EnvironmentMap):
+        emitter = _element(root, "emitter", type="envmap")
+        name = str(light.filename) if light.filename is not None else save_texels(light.texels)
+        _element(emitter, "string", name="filename", value=name)
+        _element(emitter, "float", name="scale", value=repr(light.scale))
+        m = np.eye(4)
+        m[:3, :3] = light.to_world
+        transform = _element(emitter, "transform", name="to_world")
+        _element(transform, "matrix", value=_fmt(np.ravel(m)))
+        return
     if isinstance(light, PointLight):
         emitter = _element(root, "emitter", type="point")
         _element(emitter, "point", name="position", value=_fmt(light.position))
@@ -222,8 +250,8 @@ def save_mitsuba_xml(
         if mesh.is_emitter:
             emitter = _element(shape, "emitter", type="area")
             _element(emitter, "rgb", name="radiance", value=_fmt(mesh.emission))
-    for light in scene.emitters:
-        _write_emitter(root, light)
+    for i, light in enumerate(scene.emitters):
+        _write_emitter(root, light, functools.partial(_save_texels, mesh_dir, f"emitter{i}"))
     ET.indent(root)
     out.write_text(
         "<!-- Written by dualight.save_mitsuba_xml -->\n"

@@ -14,7 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from dualight.emitters import PointLight, SpotLight
+from dualight.emitters import (
+    ConstantEnvironment,
+    DirectionalLight,
+    Emitter,
+    EnvironmentMap,
+    PointLight,
+    SpotLight,
+)
 from dualight.io._common import (
     RGB,
     PathLike,
@@ -60,7 +67,7 @@ _SUPPORTED = {
         "roughplastic",
     ),
     "texture": ("bitmap", "checkerboard"),
-    "emitter": ("area (inside a shape)", "point", "spot"),
+    "emitter": ("area (inside a shape)", "point", "spot", "directional", "constant", "envmap"),
     "sensor": ("perspective",),
     "film": ("hdrfilm",),
 }
@@ -568,22 +575,31 @@ _EMITTER_PROPERTIES: dict[str, dict[str, tuple[str, ...]]] = {
         "beam_width": ("float",),
         "to_world": ("transform",),
     },
+    "directional": {
+        "irradiance": ("rgb", "float"),
+        "direction": ("vector",),
+        "to_world": ("transform",),
+    },
+    "constant": {"radiance": ("rgb", "float")},
+    "envmap": {"filename": ("string",), "scale": ("float",), "to_world": ("transform",)},
 }
 
 
-def _emitter(ctx: _Context, element: ET.Element) -> PointLight | SpotLight:
-    """A stand-alone ``point`` or ``spot`` emitter (Mitsuba 3's parameters and defaults:
-    intensity 1, a spot's cutoff 20 degrees and beam width 3/4 of it, shining along its
-    ``to_world``'s +z)."""
+def _emitter(ctx: _Context, element: ET.Element) -> Emitter:
+    """A stand-alone emitter (Mitsuba 3's parameters and defaults: intensity, irradiance and
+    radiance 1, a spot's cutoff 20 degrees and beam width 3/4 of it, shining along its
+    ``to_world``'s +z, as does a directional light without ``direction``; an envmap's scale 1)."""
     kind = ctx.attr(element, "type")
     if kind not in _EMITTER_PROPERTIES:
         raise ctx.error(
             element,
-            f"emitter type {kind!r} is not supported at the top level (supported: point, "
-            "spot; area emitters go inside a <shape>)",
+            f"emitter type {kind!r} is not supported at the top level (supported: "
+            f"{', '.join(_EMITTER_PROPERTIES)}; area emitters go inside a <shape>)",
         )
     props = _properties(ctx, element, _EMITTER_PROPERTIES[kind], f"{kind} emitter")
     _no_children(ctx, element)
+    if kind in ("directional", "constant", "envmap"):
+        return _infinite_emitter(ctx, element, kind, props)
     intensity = _rgb_value(ctx, props["intensity"]) if "intensity" in props else (1.0, 1.0, 1.0)
     m = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
     if "position" in props and "to_world" in props:
@@ -597,6 +613,35 @@ def _emitter(ctx: _Context, element: ET.Element) -> PointLight | SpotLight:
         return SpotLight(tuple(origin), tuple(m[:3, 2]), intensity, cutoff, beam)
     except ValueError as e:
         raise ctx.error(element, f"{kind} emitter: {e}") from None
+
+
+def _infinite_emitter(
+    ctx: _Context, element: ET.Element, kind: str, props: Mapping[str, ET.Element]
+) -> DirectionalLight | ConstantEnvironment | EnvironmentMap:
+    """A ``directional``, ``constant`` or ``envmap`` emitter from its properties."""
+    m = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
+    try:
+        if kind == "directional":
+            if "direction" in props and "to_world" in props:
+                raise ctx.error(
+                    element, "a directional emitter takes direction or to_world, not both"
+                )
+            direction = _vector(ctx, props["direction"]) if "direction" in props else m[:3, 2]
+            irradiance = _rgb_or(ctx, props, "irradiance", 1.0)
+            return DirectionalLight(tuple(direction), irradiance)
+        if kind == "constant":
+            return ConstantEnvironment(_rgb_or(ctx, props, "radiance", 1.0))
+        if "filename" not in props:
+            raise ctx.error(element, 'an envmap needs <string name="filename">')
+        return EnvironmentMap(
+            ctx.folder / ctx.attr(props["filename"], "value"),
+            scale=_number(ctx, props.get("scale"), 1.0),
+            to_world=m,
+        )
+    except (ValueError, FileNotFoundError) as exc:
+        if isinstance(exc, ValueError) and str(exc).startswith(repr(str(ctx.path))):
+            raise
+        raise ctx.error(element, f"{kind} emitter: {exc}") from None
 
 
 def _bsdf_or_ref(ctx: _Context, element: ET.Element, bsdfs: Mapping[str, Material]) -> Material:

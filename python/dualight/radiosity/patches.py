@@ -205,6 +205,18 @@ def sub_triangle_uv(scene: Scene, root: np.ndarray, vertices: np.ndarray) -> np.
     return out
 
 
+
+def refuse_environments(scene: Scene) -> None:
+    """Raise ``ValueError`` if ``scene`` holds an environment (radiosity takes none yet)."""
+    from dualight.emitters import ConstantEnvironment, EnvironmentMap
+
+    for e in scene.emitters:
+        if isinstance(e, ConstantEnvironment | EnvironmentMap):
+            raise ValueError(
+                f"radiosity does not take environments yet: the scene has a {type(e).__name__} "
+                "(point, spot and directional lights enter the uniform solvers as a first shot)"
+            )
+
 class PatchMesh:
     """The scene's triangles subdivided into patches.
 
@@ -382,11 +394,18 @@ class PatchMesh:
         threads: int = 0,
         progress: Callable[[int, int], None] | None = None,
     ) -> np.ndarray:
-        """``(N, 3)`` mean irradiance over each patch straight from the scene's point and spot
-        lights (:meth:`dualight.Scene.add_emitter`), with visibility, at the centroids of a
-        ``points_per_axis`` x ``points_per_axis`` split of the patch; zeros without such
-        lights. The uniform solvers add ``reflectance * direct_irradiance()`` to the emitted
-        radiosity: the lights' first shot."""
+        """``(N, 3)`` mean irradiance over each patch straight from the scene's point, spot and
+        directional lights (:meth:`dualight.Scene.add_emitter`), with visibility, at the
+        centroids of a ``points_per_axis`` x ``points_per_axis`` split of the patch; zeros
+        without such lights. The uniform solvers add ``reflectance * direct_irradiance()`` to
+        the emitted radiosity: the lights' first shot.
+
+        Raises
+        ------
+        ValueError
+            If the scene holds an environment (constant or envmap): its irradiance is an
+            integral over the sky that radiosity does not compute yet."""
+        refuse_environments(self._scene)
         if not self._scene.emitters:
             return np.zeros((len(self), 3))
         from dualight import _core

@@ -1,0 +1,57 @@
+// Constant environment, as Mitsuba 3's `constant` and pbrt-v4's UniformInfiniteLight: radiance
+// L arriving from every direction at infinity. Rays that leave the scene see it; next-event
+// estimation samples directions uniformly on the sphere (as Mitsuba; the choice's density
+// pmf / (4 pi)).
+//
+// Flux through the scene's bounding sphere of radius r: 4 pi * pi r^2 * L, so power()
+// (flux / pi) is 4 pi r^2 L.
+//
+// Light subpaths from it (a direction, then a point on the disk facing it) are not built yet:
+// the estimators that need them refuse scenes holding it (issue 20); its sample_Le_* find
+// nothing.
+#pragma once
+#include "core/bounding_sphere.h"
+#include "core/sampling.h"
+#include "lights/emitter_flags.h"
+#include "lights/emitter_sample.h"
+
+namespace dualight {
+
+struct ConstantEmitter {
+  Color L;                // radiance, per channel
+  BoundingSphere scene;   // set by the scene (attach_scene)
+};
+
+inline void attach_scene(ConstantEmitter& e, const BoundingSphere& s) { e.scene = s; }
+
+constexpr EmitterFlags flags(const ConstantEmitter&) { return EmitterFlags::Infinite; }
+
+inline double power(const ConstantEmitter& e) {
+  return 4.0 * kPi * static_cast<double>(e.scene.radius) * e.scene.radius * average(e.L);
+}
+
+// Radiance travelling along w (from infinity into the scene): L.
+inline Color radiance(const ConstantEmitter& e, const Vec3&) { return e.L; }
+
+inline float pdf_Le_position(const ConstantEmitter&, float) { return 0.f; }
+inline EmitterPoint sample_Le_position(const ConstantEmitter&, float, Point2) { return {Vec3(0.f), Vec3(0.f), 0.f, 0, false}; }
+inline float pdf_Le_direction(const ConstantEmitter&, const Vec3&) { return 0.f; }
+inline bool sample_Le_direction(const ConstantEmitter&, float, Point2, EmitterDirection&) { return false; }
+
+// A uniform direction on the sphere, to a point beyond the bounding sphere (the shadow ray's end).
+inline bool sample_Li(const ConstantEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
+  const float reach = 2.f * e.scene.radius + length(ref - e.scene.center);
+  s.wi = square_to_uniform_sphere(u);
+  s.p = ref + s.wi * reach;
+  s.n = Vec3(0.f);
+  s.dist2 = reach * reach;
+  s.pdf_w = pmf * kUniformSpherePdf;
+  s.Le = e.L;
+  s.prim = 0;
+  s.on_surface = false;
+  return true;
+}
+// Solid-angle density of sample_Li finding direction wi (an escaping ray's).
+inline float pdf_Li(const ConstantEmitter&, float pmf, const Vec3&, float, float) { return pmf * kUniformSpherePdf; }
+
+}  // namespace dualight

@@ -1,0 +1,60 @@
+// Image-based environment, as Mitsuba 3's `envmap` and pbrt-v4's ImageInfiniteLight: radiance
+// from every direction at infinity, read from a latitude-longitude image (environment_map.h,
+// which also importance-samples it). Rays that leave the scene see it; next-event estimation
+// samples directions in proportion to its luminance.
+//
+// Flux through the scene's bounding sphere of radius r: 4 pi * pi r^2 times the mean radiance,
+// so power() (flux / pi) is 4 pi r^2 times it.
+//
+// Light subpaths from it are not built yet: the estimators that need them refuse scenes holding
+// it (issue 20); its sample_Le_* find nothing.
+#pragma once
+#include <memory>
+
+#include "core/bounding_sphere.h"
+#include "lights/emitter_flags.h"
+#include "lights/emitter_sample.h"
+#include "lights/environment_map.h"
+
+namespace dualight {
+
+struct EnvmapEmitter {
+  std::shared_ptr<const EnvironmentMap> map;  // shared by the copies of one emitter
+  BoundingSphere scene;                       // set by the scene (attach_scene)
+};
+
+inline void attach_scene(EnvmapEmitter& e, const BoundingSphere& s) { e.scene = s; }
+
+constexpr EmitterFlags flags(const EnvmapEmitter&) { return EmitterFlags::Infinite; }
+
+inline double power(const EnvmapEmitter& e) {
+  return 4.0 * kPi * static_cast<double>(e.scene.radius) * e.scene.radius * e.map->mean_radiance();
+}
+
+// Radiance travelling along w (from infinity into the scene): the map seen towards -w.
+inline Color radiance(const EnvmapEmitter& e, const Vec3& w) { return e.map->eval(-normalize(w)); }
+
+inline float pdf_Le_position(const EnvmapEmitter&, float) { return 0.f; }
+inline EmitterPoint sample_Le_position(const EnvmapEmitter&, float, Point2) { return {Vec3(0.f), Vec3(0.f), 0.f, 0, false}; }
+inline float pdf_Le_direction(const EnvmapEmitter&, const Vec3&) { return 0.f; }
+inline bool sample_Le_direction(const EnvmapEmitter&, float, Point2, EmitterDirection&) { return false; }
+
+// A direction sampled by the map's luminance, to a point beyond the bounding sphere.
+inline bool sample_Li(const EnvmapEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
+  float pdf = 0.f;
+  s.wi = e.map->sample(u, pdf);
+  if (!(pdf > 0.f)) return false;
+  const float reach = 2.f * e.scene.radius + length(ref - e.scene.center);
+  s.p = ref + s.wi * reach;
+  s.n = Vec3(0.f);
+  s.dist2 = reach * reach;
+  s.pdf_w = pmf * pdf;
+  s.Le = e.map->eval(s.wi);
+  s.prim = 0;
+  s.on_surface = false;
+  return true;
+}
+// Solid-angle density of sample_Li finding unit direction wi (an escaping ray's).
+inline float pdf_Li(const EnvmapEmitter& e, float pmf, const Vec3& wi, float, float) { return pmf * e.map->pdf(wi); }
+
+}  // namespace dualight
