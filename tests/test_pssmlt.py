@@ -54,6 +54,9 @@ SCENES = {
     "textured": functools.partial(scenes.cornell_box, variant="textured"),
     "point": functools.partial(scenes.cornell_box, variant="point"),
     "spot": functools.partial(scenes.cornell_box, variant="spot"),
+    "sun": functools.partial(scenes.cornell_box, variant="sun"),
+    "sky": functools.partial(scenes.cornell_box, variant="sky"),
+    "envmap": functools.partial(scenes.cornell_box, variant="envmap"),
 }
 
 
@@ -97,6 +100,9 @@ CONTROL_MATERIAL = {
     "textured": (("texture_shift", 1 / 32),),
     "point": (("light_scale", 0.95),),
     "spot": (("spot_cutoff", 45.0),),
+    "sun": (("light_scale", 0.95),),
+    "sky": (("light_scale", 0.95),),
+    "envmap": (("env_rotation", 30.0),),
 }
 
 # A known defect (issue 18, found with the independent random streams): under a time limit
@@ -152,8 +158,16 @@ MATERIAL_CASES = [
     ("spot", "pssmlt"),
     ("point", "mlt"),
     ("spot", "mlt"),
+    ("envmap", "mmlt"),
+    ("sun", "mmlt"),
+    ("sky", "mmlt"),
+    ("sun", "pssmlt"),
+    ("sky", "pssmlt"),
+    ("envmap", "pssmlt"),
 ]
-LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:]) - {("point", "mmlt")}
+# Emitters at infinity (issue 20): the open-top box under a sun, a sky and an environment map;
+# path-space MLT refuses them so far. make test keeps the map with MMLT.
+LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:]) - {("point", "mmlt"), ("envmap", "mmlt")}
 
 
 def _params(cases: list[tuple[str, str]], long: set[tuple[str, str]]) -> list:
@@ -197,7 +211,10 @@ def _block_test(
     """t-test of the runs' block means against the reference's, the runs' variance measured
     from their spread (so correlation between pixels and the error of b count), with
     Student's t for len(runs) - 1 degrees of freedom (the reference's own variance is 50x
-    smaller) and a Sidak-corrected level over blocks and channels.
+    smaller) and a Sidak-corrected level over blocks and channels. The variance has
+    metrics.welch_test's floor (1e-12): blocks that every run and the reference render
+    exactly alike (a constant sky seen directly, nothing seen at all) have none, and 0 / 0
+    failed them as NaN.
     Returns (fraction of blocks passing, largest |t|, critical value)."""
     ref, ref_var = _reference(scene)
     blocks = np.array([metrics.block_mean(np.asarray(r), BLOCK) for r in runs])
@@ -205,7 +222,7 @@ def _block_test(
     var_of_mean = blocks.var(axis=0, ddof=1) / len(runs)
     ref_blocks = metrics.block_mean(ref, BLOCK)
     ref_block_var = metrics.block_mean(ref_var, BLOCK) / BLOCK**2
-    t = np.abs(mean - ref_blocks) / np.sqrt(var_of_mean + ref_block_var)
+    t = np.abs(mean - ref_blocks) / np.sqrt(var_of_mean + ref_block_var + 1e-12)
     alpha_per_test = -math.expm1(math.log1p(-alpha) / t.size)
     critical = metrics.student_t_critical(len(runs) - 1, alpha_per_test)
     passed = np.all(t < critical, axis=2)

@@ -19,4 +19,8 @@ inline BoundingSphere bounding_sphere(const Vec3& lo, const Vec3& hi) {
   return {c, r > 0.f ? r * (1.f + 1e-4f) : 1e-4f};
 }
 
+// How far along unit w from p (inside the sphere) a point lies beyond the sphere: where a
+// shadow ray towards a direction at infinity ends.
+inline float reach_beyond(const BoundingSphere& s, const Vec3& p) { return 2.f * s.radius + length(p - s.center); }
+
 }  // namespace dualight

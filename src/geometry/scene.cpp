@@ -59,6 +59,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     bounds_min_ = vmin(bounds_min_, p);
     bounds_max_ = vmax(bounds_max_, p);
   }
+  sphere_ = dualight::bounding_sphere(bounds_min_, bounds_max_);
   const float extent = max_component(bounds_max_ - bounds_min_);
   if (extent < 1.f) offset_scale_ = std::exp2(std::floor(std::log2(extent)));
   eye_clearance_ = 1e-6f * extent;
@@ -88,7 +89,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     if (has_any(flags(e), EmitterFlags::Surface)) {
       throw std::invalid_argument("surface emitters come from the materials' emission, not the emitter list");
     }
-    attach_scene(e, bounding_sphere(bounds_min_, bounds_max_));
+    attach_scene(e, sphere_);
     const double p = power(e);
     if (!(p >= 0.0 && std::isfinite(p))) throw std::invalid_argument("emitter power must be finite and >= 0");
     emitters_.push_back(std::move(e));

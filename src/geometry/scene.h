@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/bounding_sphere.h"
 #include "core/ray.h"
 #include "core/sampling.h"
 #include "geometry/embree_accel.h"
@@ -122,6 +123,11 @@ class Scene {
   float plane_offset(uint32_t prim, const Vec3& p) const { return dot(normal_[prim], p - vertex(prim, 0)); }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
+  // The sphere around the geometry that emitters at infinity use (core/bounding_sphere.h).
+  const BoundingSphere& bounding_sphere() const { return sphere_; }
+  // A point along unit w from p (inside the sphere) beyond the bounding sphere: where a shadow
+  // ray towards a direction at infinity ends.
+  Vec3 beyond(const Vec3& p, const Vec3& w) const { return p + w * reach_beyond(sphere_, p); }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
   const SceneFeatures& features() const { return features_; }
 
@@ -160,6 +166,7 @@ class Scene {
   std::vector<const Emitter*> environment_;  // into emitters_ (fixed after construction)
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
+  BoundingSphere sphere_;
   float offset_scale_ = 1.f;
   float eye_clearance_ = 0.f;
   SceneFeatures features_;

@@ -33,7 +33,7 @@ inline double power(const AreaEmitter& e) { return static_cast<double>(e.area) *
 // Radiance leaving the emitter towards w (any length): one-sided.
 inline Color radiance(const AreaEmitter& e, const Vec3& w) { return dot(e.n, w) > 0.f ? e.Le : Color(0.f); }
 
-inline float pdf_Le_position(const AreaEmitter& e, float pmf) { return pmf / e.area; }
+inline float pdf_Le_position(const AreaEmitter& e, float pmf, const Vec3& = {}) { return pmf / e.area; }
 inline EmitterPoint sample_Le_position(const AreaEmitter& e, float pmf, Point2 u) {
   const Point2 b = square_to_uniform_triangle(u);
   return {e.p0 * (1.f - b.u - b.v) + e.p1 * b.u + e.p2 * b.v, e.n, pdf_Le_position(e, pmf), e.prim};
@@ -43,7 +43,7 @@ inline EmitterPoint sample_Le_position(const AreaEmitter& e, float pmf, Point2 u
 inline float pdf_Le_direction(const AreaEmitter& e, const Vec3& w) { return cosine_hemisphere_pdf(dot(e.n, w)); }
 // pdf_a: the density of the emitter point the direction leaves from. False (with w and pdf_w
 // still set) when the direction has density 0.
-inline bool sample_Le_direction(const AreaEmitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const AreaEmitter& e, float pdf_a, const Vec3&, Point2 u, EmitterDirection& d) {
   const Vec3 local = square_to_cosine_hemisphere(u);
   d.pdf_w = cosine_hemisphere_pdf(local.z);
   d.w = Frame::from_normal(e.n).to_world(local);

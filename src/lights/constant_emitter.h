@@ -6,12 +6,12 @@
 // Flux through the scene's bounding sphere of radius r: 4 pi * pi r^2 * L, so power()
 // (flux / pi) is 4 pi r^2 L.
 //
-// Light subpaths from it (a direction, then a point on the disk facing it) are not built yet:
-// the estimators that need them refuse scenes holding it (issue 20); its sample_Le_* find
-// nothing.
+// Light subpaths: a direction at infinity, uniform on the sphere, then a point on the distant
+// disk facing it (lights/distant_disk.h).
 #pragma once
 #include "core/bounding_sphere.h"
 #include "core/sampling.h"
+#include "lights/distant_disk.h"
 #include "lights/emitter_flags.h"
 #include "lights/emitter_sample.h"
 
@@ -33,14 +33,27 @@ inline double power(const ConstantEmitter& e) {
 // Radiance travelling along w (from infinity into the scene): L.
 inline Color radiance(const ConstantEmitter& e, const Vec3&) { return e.L; }
 
-inline float pdf_Le_position(const ConstantEmitter&, float) { return 0.f; }
-inline EmitterPoint sample_Le_position(const ConstantEmitter&, float, Point2) { return {Vec3(0.f), Vec3(0.f), 0.f, 0, false}; }
-inline float pdf_Le_direction(const ConstantEmitter&, const Vec3&) { return 0.f; }
-inline bool sample_Le_direction(const ConstantEmitter&, float, Point2, EmitterDirection&) { return false; }
+inline float pdf_Le_position(const ConstantEmitter&, float pmf, const Vec3& = {}) { return pmf * kUniformSpherePdf; }
+inline EmitterPoint sample_Le_position(const ConstantEmitter&, float pmf, Point2 u) {
+  const Vec3 w = square_to_uniform_sphere(u);
+  EmitterPoint y{w, w, pmf * kUniformSpherePdf, 0, false};
+  y.at_infinity = true;
+  return y;
+}
+inline float pdf_Le_direction(const ConstantEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
+// From direction `at` (towards the emitter): a ray along -at from the distant disk.
+inline bool sample_Le_direction(const ConstantEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
+  d.w = -at;
+  d.origin = distant_disk_point(e.scene, at, u);
+  d.pdf_w = distant_disk_pdf(e.scene);
+  if (!(pdf_a > 0.f)) return false;
+  d.beta = e.L / (pdf_a * d.pdf_w);
+  return true;
+}
 
 // A uniform direction on the sphere, to a point beyond the bounding sphere (the shadow ray's end).
 inline bool sample_Li(const ConstantEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
-  const float reach = 2.f * e.scene.radius + length(ref - e.scene.center);
+  const float reach = reach_beyond(e.scene, ref);
   s.wi = square_to_uniform_sphere(u);
   s.p = ref + s.wi * reach;
   s.n = Vec3(0.f);

@@ -1,9 +1,8 @@
 // Directional light, as Mitsuba 3's `directional` and pbrt-v4's DistantLight: irradiance E
 // (W/m^2, on a plane facing it) arriving along one direction from infinitely far away, the sun's
 // idealisation. Its direction is a Dirac delta: no path can hit it, only next-event estimation
-// (towards -w, unoccluded to infinity) and light subpaths reach it. Light subpaths start on a
-// disk of the scene's bounding sphere's radius, perpendicular to w, behind the scene
-// [pbrt-v4 sec. 12.4; Veach 1997, sec. 8.1.1]: uniform on it, then along w.
+// (towards -w, unoccluded to infinity) and light subpaths reach it. Light subpaths start on the
+// distant disk (lights/distant_disk.h) [pbrt-v4 sec. 12.4]: uniform on it, then along w.
 //
 // Flux through the scene: E pi r^2, so power() (flux / pi) is E r^2 for the sphere's radius r.
 #pragma once
@@ -12,6 +11,7 @@
 #include "core/bounding_sphere.h"
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "lights/distant_disk.h"
 #include "lights/emitter_flags.h"
 #include "lights/emitter_sample.h"
 
@@ -41,28 +41,31 @@ inline double power(const DirectionalEmitter& e) {
 // What reaches a plane facing it per unit area: its irradiance (in the measure of its disk).
 inline Color radiance(const DirectionalEmitter& e, const Vec3&) { return e.E; }
 
-// Light subpaths: a point on the disk, area density pmf / (pi r^2); the vertex is in free space.
-inline float pdf_Le_position(const DirectionalEmitter& e, float pmf) {
-  return pmf / (kPi * e.scene.radius * e.scene.radius);
+// Light subpaths: its direction at infinity, with the choice's probability (a delta: the
+// position of a point at infinity [Veach 1997, sec. 8.1.1]), then a point on the distant disk
+// (lights/distant_disk.h) from which the ray travels along w.
+inline float pdf_Le_position(const DirectionalEmitter&, float pmf, const Vec3& = {}) { return pmf; }
+inline EmitterPoint sample_Le_position(const DirectionalEmitter& e, float pmf, Point2) {
+  EmitterPoint y{-e.frame.n, -e.frame.n, pmf, 0, false};
+  y.at_infinity = true;
+  return y;
 }
-inline EmitterPoint sample_Le_position(const DirectionalEmitter& e, float pmf, Point2 u) {
-  const Point2 d = square_to_uniform_disk(u);
-  const Vec3 offset = e.frame.to_world(Vec3(d.u, d.v, -1.f)) * e.scene.radius;
-  return {e.scene.center + offset, Vec3(0.f), pdf_Le_position(e, pmf), 0, false};
-}
-inline float pdf_Le_direction(const DirectionalEmitter&, const Vec3&) { return 0.f; }
-// The one direction w, chosen with probability 1: beta = E / pdf_a (flux through the disk).
-inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, Point2, EmitterDirection& d) {
+inline float pdf_Le_direction(const DirectionalEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
+// beta = E / (pdf_a pdf_disk): the flux through the disk over the choice's probability.
+inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, const Vec3&, Point2 u,
+                                EmitterDirection& d) {
   d.w = e.frame.n;
-  d.pdf_w = 1.f;
-  d.beta = e.E / pdf_a;
+  d.origin = distant_disk_point(e.scene, -e.frame.n, u);
+  d.pdf_w = distant_disk_pdf(e.scene);
+  if (!(pdf_a > 0.f)) return false;
+  d.beta = e.E / (pdf_a * d.pdf_w);
   return true;
 }
 
 // Seen from `ref`: towards -w, to a point beyond the bounding sphere (the shadow ray's end);
 // pdf_w is the choice's probability, Le the irradiance.
 inline bool sample_Li(const DirectionalEmitter& e, float pmf, const Vec3& ref, Point2, LightSample& s) {
-  const float reach = 2.f * e.scene.radius + length(ref - e.scene.center);
+  const float reach = reach_beyond(e.scene, ref);
   s.wi = -e.frame.n;
   s.p = ref + s.wi * reach;
   s.n = Vec3(0.f);

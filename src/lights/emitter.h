@@ -13,7 +13,8 @@
 // positions with on_surface = false and a zero normal, and paths never hit it. Members at
 // infinity (flag Infinite) learn the scene's bounding sphere from attach_scene; those whose
 // direction is not a delta are what rays leaving the scene see (radiance towards -ray.d,
-// pdf_Li at the ray's direction); their light subpaths are not built yet (issue 20).
+// pdf_Li at the ray's direction). Their light subpaths start at a direction at infinity
+// (EmitterPoint::at_infinity) and enter the scene from the distant disk (distant_disk.h).
 #pragma once
 #include <variant>
 
@@ -60,8 +61,9 @@ inline double power(const Emitter& e) {
 inline Color radiance(const Emitter& e, const Vec3& w) {
   return with_emitter(e, [&](const auto& x) { return radiance(x, w); });
 }
-inline float pdf_Le_position(const Emitter& e, float pmf) {
-  return with_emitter(e, [&](const auto& x) { return pdf_Le_position(x, pmf); });
+// The density of the emitter point (or direction at infinity) `at` as a light subpath's start.
+inline float pdf_Le_position(const Emitter& e, float pmf, const Vec3& at) {
+  return with_emitter(e, [&](const auto& x) { return pdf_Le_position(x, pmf, at); });
 }
 inline EmitterPoint sample_Le_position(const Emitter& e, float pmf, Point2 u) {
   return with_emitter(e, [&](const auto& x) { return sample_Le_position(x, pmf, u); });
@@ -69,8 +71,9 @@ inline EmitterPoint sample_Le_position(const Emitter& e, float pmf, Point2 u) {
 inline float pdf_Le_direction(const Emitter& e, const Vec3& w) {
   return with_emitter(e, [&](const auto& x) { return pdf_Le_direction(x, w); });
 }
-inline bool sample_Le_direction(const Emitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
-  return with_emitter(e, [&](const auto& x) { return sample_Le_direction(x, pdf_a, u, d); });
+// A direction of emission from the emitter point `at` sampled with density pdf_a.
+inline bool sample_Le_direction(const Emitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
+  return with_emitter(e, [&](const auto& x) { return sample_Le_direction(x, pdf_a, at, u, d); });
 }
 inline bool sample_Li(const Emitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
   return with_emitter(e, [&](const auto& x) { return sample_Li(x, pmf, ref, u, s); });

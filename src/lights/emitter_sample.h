@@ -14,12 +14,16 @@ struct EmitterPoint {
   float pdf_a = 0.f;     // area density, or the probability of a point emitter's point
   uint32_t prim = 0;     // the scene triangle it lies on (when on_surface)
   bool on_surface = true;  // false: a point in free space (no cosine, no material there)
+  // A point on the sphere at infinity: p = n = the unit direction from the scene towards it,
+  // pdf_a a solid-angle density (or a direction's discrete probability).
+  bool at_infinity = false;
 };
 // A direction of emission from an emitter point.
 struct EmitterDirection {
   Vec3 w;             // unit
-  float pdf_w = 0.f;  // solid-angle density
+  float pdf_w = 0.f;  // solid-angle density; from infinity the planar density of `origin`
   Color beta;         // Le |cos| / (pdf_a pdf_w): the light subpath's throughput after it
+  Vec3 origin;        // from infinity: the ray's start on the distant disk (lights/distant_disk.h)
 };
 // Next-event estimation: a point on the emitter seen from a reference point.
 struct LightSample {

@@ -6,12 +6,13 @@
 // Flux through the scene's bounding sphere of radius r: 4 pi * pi r^2 times the mean radiance,
 // so power() (flux / pi) is 4 pi r^2 times it.
 //
-// Light subpaths from it are not built yet: the estimators that need them refuse scenes holding
-// it (issue 20); its sample_Le_* find nothing.
+// Light subpaths: a direction at infinity sampled as next-event estimation samples it, then a
+// point on the distant disk facing it (lights/distant_disk.h).
 #pragma once
 #include <memory>
 
 #include "core/bounding_sphere.h"
+#include "lights/distant_disk.h"
 #include "lights/emitter_flags.h"
 #include "lights/emitter_sample.h"
 #include "lights/environment_map.h"
@@ -34,17 +35,31 @@ inline double power(const EnvmapEmitter& e) {
 // Radiance travelling along w (from infinity into the scene): the map seen towards -w.
 inline Color radiance(const EnvmapEmitter& e, const Vec3& w) { return e.map->eval(-normalize(w)); }
 
-inline float pdf_Le_position(const EnvmapEmitter&, float) { return 0.f; }
-inline EmitterPoint sample_Le_position(const EnvmapEmitter&, float, Point2) { return {Vec3(0.f), Vec3(0.f), 0.f, 0, false}; }
-inline float pdf_Le_direction(const EnvmapEmitter&, const Vec3&) { return 0.f; }
-inline bool sample_Le_direction(const EnvmapEmitter&, float, Point2, EmitterDirection&) { return false; }
+inline float pdf_Le_position(const EnvmapEmitter& e, float pmf, const Vec3& at) { return pmf * e.map->pdf(at); }
+inline EmitterPoint sample_Le_position(const EnvmapEmitter& e, float pmf, Point2 u) {
+  float pdf = 0.f;
+  const Vec3 w = e.map->sample(u, pdf);
+  EmitterPoint y{w, w, pmf * pdf, 0, false};
+  y.at_infinity = true;
+  return y;
+}
+inline float pdf_Le_direction(const EnvmapEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
+// From direction `at` (towards the emitter): a ray along -at from the distant disk.
+inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
+  d.w = -at;
+  d.origin = distant_disk_point(e.scene, at, u);
+  d.pdf_w = distant_disk_pdf(e.scene);
+  if (!(pdf_a > 0.f)) return false;
+  d.beta = e.map->eval(at) / (pdf_a * d.pdf_w);
+  return true;
+}
 
 // A direction sampled by the map's luminance, to a point beyond the bounding sphere.
 inline bool sample_Li(const EnvmapEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
   float pdf = 0.f;
   s.wi = e.map->sample(u, pdf);
   if (!(pdf > 0.f)) return false;
-  const float reach = 2.f * e.scene.radius + length(ref - e.scene.center);
+  const float reach = reach_beyond(e.scene, ref);
   s.p = ref + s.wi * reach;
   s.n = Vec3(0.f);
   s.dist2 = reach * reach;

@@ -40,7 +40,7 @@ inline double power(const SpotEmitter& e) { return 2.0 * (1.0 - double(e.cos_cut
 
 inline Color radiance(const SpotEmitter& e, const Vec3& w) { return e.I * spot_falloff(e, w); }
 
-inline float pdf_Le_position(const SpotEmitter&, float pmf) { return pmf; }
+inline float pdf_Le_position(const SpotEmitter&, float pmf, const Vec3& = {}) { return pmf; }
 inline EmitterPoint sample_Le_position(const SpotEmitter& e, float pmf, Point2) {
   return {e.p, Vec3(0.f), pmf, 0, false};
 }
@@ -48,7 +48,7 @@ inline EmitterPoint sample_Le_position(const SpotEmitter& e, float pmf, Point2) 
 inline float pdf_Le_direction(const SpotEmitter& e, const Vec3& w) {
   return dot(w, e.frame.n) > e.cos_cutoff ? uniform_cone_pdf(e.cos_cutoff) : 0.f;
 }
-inline bool sample_Le_direction(const SpotEmitter& e, float pdf_a, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const SpotEmitter& e, float pdf_a, const Vec3&, Point2 u, EmitterDirection& d) {
   d.w = e.frame.to_world(square_to_uniform_cone(u, e.cos_cutoff));
   d.pdf_w = uniform_cone_pdf(e.cos_cutoff);
   d.beta = radiance(e, d.w) / (pdf_a * d.pdf_w);

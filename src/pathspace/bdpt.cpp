@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "pathspace/bdpt_sample.h"
-#include "pathspace/emitter_support.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/shadow_ray.h"
 
@@ -21,7 +20,6 @@ std::vector<std::pair<int, int>> bdpt_strategies(int max_depth) {
 
 RenderResult render_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
                          RenderControl& control) {
-  require_light_subpaths(scene, "bdpt", false);
   if (options.strategy_images && options.max_depth < 0) {
     throw std::invalid_argument("strategy images need a bounded max_depth");
   }

@@ -18,8 +18,10 @@
 namespace dualight {
 
 // A segment made by connecting a and b (neither specular): visibility, one shadow ray, aimed at
-// the vertex itself where it has no surface (the camera, a point emitter).
+// the vertex itself where it has no surface (the camera, a point emitter), or past the scene
+// towards b's direction when b is at infinity.
 inline bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
+  if (b.at_infinity) return shadow_ray_visible_point(scene, a.p, a.n, scene.beyond(a.p, b.n), counters);
   if (b.on_surface() && !a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
   return shadow_ray_visible_to(scene, a.p, a.n, a.on_surface() ? a.prim : Scene::kNoTriangle, b.p, b.prim,
                                b.on_surface(), counters);
@@ -48,9 +50,28 @@ inline Vertex camera_vertex(const PinholeCamera& camera) {
   return c;
 }
 
+// t = 1 from a vertex at infinity: the environment seen straight through the pinhole towards
+// qs.n (G = 1: no distance, no cosine at either end). A directional light is not seen (a delta
+// direction through a delta position).
+inline Color connect_camera_to_infinity(const Scene& scene, const PinholeCamera& camera, const Vertex& qs,
+                                        Point2& raster, TraceCounters& counters) {
+  if (is_delta_direction(*qs.emitter) || !camera.raster_position(camera.origin() + qs.n, raster)) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
+  const Color L = qs.beta * emitted_towards(qs, camera.origin()) * camera.importance(qs.n);
+  if (is_black(L)) {
+    ++counters.skipped_connections;
+    return L;
+  }
+  const Vec3 eye = camera.origin();
+  return shadow_ray_visible_point(scene, scene.beyond(eye, qs.n), -qs.n, eye, counters) ? L : Color(0.f);
+}
+
 // t = 1: the light subpath vertex qs seen by the camera.
 inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, const Vertex& qs, Point2& raster,
                                TraceCounters& counters) {
+  if (qs.at_infinity) return connect_camera_to_infinity(scene, camera, qs, raster, counters);
   // A point emitter is not seen through a pinhole (two delta positions never meet).
   if (!qs.connectible() || qs.at_point || !camera.raster_position(qs.p, raster)) {
     ++counters.skipped_connections;
@@ -69,6 +90,23 @@ inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, 
   return shadow_ray_visible_point(scene, qs.p, qs.n, camera.origin(), counters) ? L : Color(0.f);
 }
 
+// s = 1 with the emitter vertex at infinity: towards its direction, G = |cos| at pt alone.
+inline Color connect_to_infinity(const Scene& scene, const Vertex& pt, const Vertex& qs, TraceCounters& counters) {
+  const Vec3 w = qs.n;
+  const float band = 16.f * std::numeric_limits<float>::epsilon();
+  const float G = std::abs(dot(pt.n, w));
+  if (!(G > band)) {
+    ++counters.skipped_connections;
+    return Color(0.f);
+  }
+  const Color L = qs.beta * emitted_towards(qs, pt.p) * pt.beta * scattering_along(pt, w, TransportMode::Radiance) * G;
+  if (is_black(L)) {
+    ++counters.skipped_connections;
+    return L;
+  }
+  return connect_visible(scene, pt, qs, counters) ? L : Color(0.f);
+}
+
 template <class Sampler>
 Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam, int s, int t,
               Sampler& sampler, Vertex& sampled, Point2& raster, TraceCounters& counters) {
@@ -81,7 +119,8 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
     return connect_to_camera(scene, camera, light[s - 1], raster, counters);
   }
   const Vertex& pt = cam[t - 1];
-  if (!pt.connectible()) {
+  // A camera subpath's vertex at infinity (its ray left the scene) takes s = 0 only.
+  if (!pt.connectible() || pt.at_infinity) {
     ++counters.skipped_connections;
     return Color(0.f);
   }
@@ -94,6 +133,7 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
     ++counters.skipped_connections;
     return Color(0.f);
   }
+  if (qs.at_infinity) return connect_to_infinity(scene, pt, qs, counters);
   const Vec3 d = qs.p - pt.p;
   const float dist2 = dot(d, d);
   if (!(dist2 > 0.f)) return Color(0.f);

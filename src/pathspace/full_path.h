@@ -19,8 +19,6 @@ namespace dualight {
 
 inline bool is_specular(const Vertex& v) { return v.type == VertexType::Surface && is_delta(v.material->bsdf); }
 
-inline Vec3 direction(const Vertex& from, const Vertex& to) { return normalize(to.p - from.p); }
-
 // |cos| at both ends over distance squared; no cosine at the pinhole camera.
 inline double geometry_term(const Vertex& a, const Vertex& b) {
   const Vec3 d = b.p - a.p;

@@ -8,7 +8,6 @@
 #include "core/stopwatch.h"
 #include "film/splat_list.h"
 #include "pathspace/connect.h"
-#include "pathspace/emitter_support.h"
 #include "pathspace/subpath.h"
 
 namespace dualight {
@@ -119,7 +118,6 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
 
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                           RenderControl& control) {
-  require_light_subpaths(scene, "light", true);
   RenderResult result{Film(camera.width(), camera.height()), {}};
   result.stats = with_sampler(options.sampler, [&](auto tag) {
     return drive_particles<typename decltype(tag)::type>(scene, camera, options, result.film, control);

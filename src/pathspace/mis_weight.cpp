@@ -37,8 +37,9 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
     const float rev = i == s - 1 ? qs_rev : (i == s - 2 ? qs_minus_rev : light[i].pdf_rev);
     ratio *= remap0(rev) / remap0(v.pdf_fwd);
     const bool delta_i = i != s - 1 && light[i].delta;
-    // Before the emitter vertex: a delta position (a point light) cannot be hit by a camera path.
-    const bool delta_before = i > 0 ? light[i - 1].delta : is_delta_position(*v.emitter);
+    // Before the emitter vertex: a delta position or direction (a point light, a directional
+    // one) cannot be hit by a camera path.
+    const bool delta_before = i > 0 ? light[i - 1].delta : is_delta_light(*v.emitter);
     if (!delta_i && !delta_before) sum += h(ratio);
   }
   return 1.f / (1.f + sum);

@@ -254,7 +254,7 @@ Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOpt
 
 // One population of every path length: the chains that found a start path share the mutations.
 void check_path_space_supports(const Scene& scene) {
-  require_light_subpaths(scene, "mlt", false);
+  refuse_emitters_at_infinity(scene, "mlt");
   // A path's vertices are specular or not by their BSDF (full_path.h), so a path through the
   // Dirac lobe of a BSDF that also has a diffuse or glossy one would be evaluated without it.
   if (scene.features().mixed_delta) {

@@ -7,13 +7,16 @@
 namespace dualight {
 
 Color scattering(const Vertex& v, const Vec3& next, TransportMode mode) {
-  const Vec3 wi = normalize(next - v.p);
+  return scattering_along(v, normalize(next - v.p), mode);
+}
+
+Color scattering_along(const Vertex& v, const Vec3& wi, TransportMode mode) {
   const Color f = with_bsdf(v, [&](const Bsdf& b) { return eval_f_world(b, v.ns, v.wo, wi, mode); });
   return f * shading_ratio(v.n, v.ns, mode == TransportMode::Radiance ? wi : v.wo);
 }
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next) {
-  const Vec3 w = normalize(next.p - v.p);
+  const Vec3 w = direction(v, next);
   float pdf_w = 0.f;
   switch (v.type) {
     case VertexType::Camera:
@@ -23,18 +26,18 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
       pdf_w = emission_pdf_w(v, w);
       break;
     case VertexType::Surface:
-      pdf_w = surface_pdf_w(v, normalize(prev->p - v.p), w, TransportMode::Radiance);
+      pdf_w = surface_pdf_w(v, direction(v, *prev), w, TransportMode::Radiance);
       break;
   }
   return solid_angle_to_area(pdf_w, v, next);
 }
 
 float pdf_light_origin(const Scene& scene, const Vertex& v) {
-  return v.emitter != nullptr ? pdf_Le_position(*v.emitter, scene.emitter_pmf(*v.emitter)) : 0.f;
+  return v.emitter != nullptr ? pdf_Le_position(*v.emitter, scene.emitter_pmf(*v.emitter), v.p) : 0.f;
 }
 
 float pdf_light(const Vertex& v, const Vertex& next) {
-  return solid_angle_to_area(emission_pdf_w(v, normalize(next.p - v.p)), v, next);
+  return solid_angle_to_area(emission_pdf_w(v, direction(v, next)), v, next);
 }
 
 // Recomputes from the stored directions (wo), as the walk evaluated its densities at the directions

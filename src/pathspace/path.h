@@ -36,7 +36,11 @@ struct Vertex {
   Color beta;
   float pdf_fwd = 0.f, pdf_rev = 0.f;
   bool delta = false;
-  bool at_point = false;  // a light vertex of an emitter that is a point in free space
+  bool at_point = false;  // a light vertex in free space: a point emitter's, or one at infinity
+  // A light vertex on the sphere at infinity (an environment, a directional light): p and n hold
+  // the unit direction from the scene towards it; densities of reaching it are solid-angle
+  // densities, and those of leaving it planar densities on the distant disk (at_point too).
+  bool at_infinity = false;
 
   // Has a surface (a normal whose cosine enters geometry terms): not the pinhole camera, not a
   // point emitter.
@@ -49,7 +53,9 @@ struct Vertex {
       case VertexType::Surface:
         return !is_delta(material->bsdf);
       case VertexType::Light:
-        return emitter == nullptr || !is_delta_direction(*emitter);
+        // At infinity the direction to any point is the vertex's own: a directional light
+        // connects (its delta is the position at infinity).
+        return emitter == nullptr || at_infinity || !is_delta_direction(*emitter);
       case VertexType::Camera:
         break;
     }
@@ -102,13 +108,42 @@ inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
   v.material = y.on_surface ? &scene.material(v.prim) : nullptr;
   v.emitter = choice.emitter;
   v.at_point = !y.on_surface;
+  v.at_infinity = y.at_infinity;
   v.beta = Color(1.f / y.pdf_a);
   v.pdf_fwd = y.pdf_a;
   return v;
 }
 
-// Area density at `to` of a solid-angle density at `from` towards `to`.
+// The vertex at infinity a camera subpath reaches when its ray (unit direction d, sampled with
+// solid-angle density pdf_w) leaves the scene towards its environment; beta its throughput.
+inline Vertex escape_vertex(const Scene& scene, const Vec3& d, const Color& beta, float pdf_w) {
+  Vertex v;
+  v.type = VertexType::Light;
+  v.p = d;
+  v.n = d;
+  v.ns = d;
+  v.wo = -d;
+  v.emitter = scene.environment().front();
+  v.at_point = true;
+  v.at_infinity = true;
+  v.beta = beta;
+  v.pdf_fwd = pdf_w;  // the sphere at infinity is measured in solid angle
+  return v;
+}
+
+// Unit direction from vertex `from` to vertex `to` (either may be at infinity).
+inline Vec3 direction(const Vertex& from, const Vertex& to) {
+  if (to.at_infinity) return to.n;
+  if (from.at_infinity) return -from.n;
+  return normalize(to.p - from.p);
+}
+
+// Area density at `to` of a solid-angle density at `from` towards `to`. Towards infinity the
+// measure stays solid angle; from infinity pdf_w is the distant disk's planar density, which
+// becomes an area density by the cosine at `to`.
 inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& to) {
+  if (to.at_infinity) return pdf_w;
+  if (from.at_infinity) return to.on_surface() ? pdf_w * std::abs(dot(to.n, from.n)) : pdf_w;
   const Vec3 d = to.p - from.p;
   const float inv_dist2 = 1.f / dot(d, d);
   float pdf = pdf_w * inv_dist2;
@@ -119,9 +154,10 @@ inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& 
 // |cos| between v's normal and unit w, or 1 where v has no surface (camera, point emitter).
 inline float abs_cos(const Vertex& v, const Vec3& w) { return v.on_surface() ? std::abs(dot(v.n, w)) : 1.f; }
 
-// Radiance vertex v emits towards `to` (0 when v is on no emitter).
+// Radiance vertex v emits towards `to` (0 when v is on no emitter); from infinity, along -v.n.
 inline Color emitted_towards(const Vertex& v, const Vec3& to) {
-  return v.emitter != nullptr ? radiance(*v.emitter, to - v.p) : Color(0.f);
+  if (v.emitter == nullptr) return Color(0.f);
+  return radiance(*v.emitter, v.at_infinity ? -v.n : to - v.p);
 }
 
 // Solid-angle density of v's emitter emitting towards unit w (0 when v is on no emitter).
@@ -132,6 +168,8 @@ inline float emission_pdf_w(const Vertex& v, const Vec3& w) {
 // The BSDF of surface vertex v from direction of `prev` (its wo) to `next`, in `mode`; f only,
 // the cosine belongs to the geometry term.
 Color scattering(const Vertex& v, const Vec3& next, TransportMode mode);
+// The same towards unit direction wi (a vertex at infinity's).
+Color scattering_along(const Vertex& v, const Vec3& wi, TransportMode mode);
 
 // Area density at `next` of sampling from v, which was reached from `prev` (unused at the ends of
 // a subpath): the camera's direction density, an emitter's cosine lobe, or v's BSDF.

@@ -9,7 +9,6 @@
 
 #include "core/apportion.h"
 #include "core/distribution.h"
-#include "pathspace/emitter_support.h"
 #include "pathspace/shadow_ray.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
@@ -301,7 +300,6 @@ ChainStartUpShape pssmlt_start_up_shape(const PssmltOptions& opt, size_t pixels)
 
 ChainStartUp pssmlt_start_up(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt,
                              RenderControl& control, const std::function<double()>& elapsed) {
-  require_light_subpaths(scene, opt.multiplexed ? "mmlt" : "pssmlt", false);
   ChainStartUp start;
   MltStats& mlt = start.mlt;
   const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();

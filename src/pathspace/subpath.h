@@ -26,7 +26,8 @@ inline constexpr int kNoRussianRoulette = 1 << 30;
 namespace subpath_detail {
 
 // Extends `path` from its last vertex along `ray`, which was sampled with solid-angle density
-// pdf_w; at most `max_new` vertices are added.
+// pdf_w; at most `max_new` vertices are added. A camera subpath (Radiance) whose ray leaves a
+// scene with an environment ends at a vertex at infinity on it (escape_vertex).
 template <class Sampler>
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
                  int rr_depth, TransportMode mode, Path& path, TraceCounters& counters) {
@@ -34,7 +35,12 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
   for (size_t added = 0; added < max_new; ++added) {
     SurfaceHit hit;
     ++counters.rays;
-    if (!scene.intersect(ray, hit)) return;
+    if (!scene.intersect(ray, hit)) {
+      if (mode == TransportMode::Radiance && !scene.environment().empty()) {
+        path.push_back(escape_vertex(scene, ray.d, beta, pdf_w));
+      }
+      return;
+    }
     Vertex v = surface_vertex(hit, ray.d);
     v.beta = beta;
     v.pdf_fwd = solid_angle_to_area(pdf_w, path.back(), v);
@@ -111,8 +117,8 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   path.push_back(emitter_vertex(scene, u_select, sampler.next_2d()));
   const Vertex& y0 = path.back();
   EmitterDirection d;
-  if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, sampler.next_2d(), d)) return;
-  const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : y0.p;
+  if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, y0.p, sampler.next_2d(), d)) return;
+  const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : (y0.at_infinity ? d.origin : y0.p);
   subpath_detail::random_walk(scene, Ray{origin, d.w}, sampler, d.beta, d.pdf_w,
                               max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);
 }

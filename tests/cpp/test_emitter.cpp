@@ -45,10 +45,10 @@ TEST_CASE("area_emitter_densities_agree") {
     CHECK_NEAR(ls.pdf_w / pdf_Li(e, pmf, ls.wi, dist, cos_light), 1.f, 1e-5f);
     CHECK_NEAR(length(ref + ls.wi * dist - ls.p), 0.f, 1e-5f);
     const EmitterPoint y = sample_Le_position(e, pmf, u);
-    CHECK(y.pdf_a == pdf_Le_position(e, pmf));
+    CHECK(y.pdf_a == pdf_Le_position(e, pmf, y.p));
     CHECK_NEAR(y.pdf_a, pmf / 2.f, 1e-7f);  // area 2
     EmitterDirection d;
-    REQUIRE(sample_Le_direction(e, y.pdf_a, u, d));
+    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, u, d));
     CHECK(d.pdf_w == pdf_Le_direction(e, d.w));
     // beta = Le |cos| / (pdf_a pdf_w).
     CHECK_NEAR(d.beta.x / (2.f * d.w.z / (y.pdf_a * d.pdf_w)), 1.f, 1e-5f);
@@ -103,7 +103,7 @@ TEST_CASE("point_emitter_is_a_delta_position_with_intensity_over_r2") {
   // Light subpaths leave uniformly: beta = I / (pmf / (4 pi)), every direction.
   for (const Point2 u : {Point2{0.1f, 0.2f}, Point2{0.7f, 0.9f}, Point2{0.5f, 0.5f}}) {
     EmitterDirection d;
-    REQUIRE(sample_Le_direction(e, y.pdf_a, u, d));
+    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, u, d));
     CHECK_NEAR(length(d.w), 1.f, 1e-5f);
     CHECK(d.pdf_w == pdf_Le_direction(e, d.w));
     CHECK_NEAR(d.beta.x, 4.f * 4.f * kPi / 0.5f, 1e-3f);
@@ -129,7 +129,7 @@ TEST_CASE("spot_emitter_falls_off_as_mitsuba_and_samples_its_cone") {
   for (int i = 0; i < 64; ++i) {
     const Point2 u{(i % 8 + 0.5f) / 8.f, (i / 8 + 0.5f) / 8.f};
     EmitterDirection d;
-    if (!sample_Le_direction(e, 1.f, u, d)) continue;
+    if (!sample_Le_direction(e, 1.f, Vec3(0.f), u, d)) continue;
     ++n;
     CHECK(-d.w.z > std::cos(40.f * kDeg) - 1e-5f);
     CHECK_NEAR(d.pdf_w, expected_pdf, 1e-4f * expected_pdf);
@@ -242,15 +242,19 @@ TEST_CASE("directional_emitter_is_a_delta_direction_at_infinity") {
   CHECK_NEAR(ls.wi.z, 1.f, 1e-6f);
   CHECK(length(ls.p - Vec3(1.f, 0.f, 0.f)) > 2.f);  // the shadow ray ends beyond the sphere
   CHECK(pdf_Li(e, 0.5f, ls.wi, 1.f, 1.f) == 0.f);
-  // Light subpaths: uniform on the disk of radius r behind the sphere, then along the direction.
+  // Light subpaths: its direction at infinity with the choice's probability, then a point on
+  // the distant disk (radius r, behind the sphere, facing the light), along the direction.
   const EmitterPoint y = sample_Le_position(e, 0.5f, {0.9f, 0.1f});
-  CHECK_NEAR(y.p.z, 2.f, 1e-5f);
-  CHECK(length(y.p - Vec3(1.f, 0.f, 2.f)) <= 2.f + 1e-5f);
-  CHECK_NEAR(y.pdf_a, 0.5f / (kPi * 4.f), 1e-7f);
+  CHECK((y.at_infinity && !y.on_surface && y.pdf_a == 0.5f));
+  CHECK_NEAR(y.p.z, 1.f, 1e-6f);
   EmitterDirection dir;
-  REQUIRE(sample_Le_direction(e, y.pdf_a, {0.2f, 0.2f}, dir));
+  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, {0.9f, 0.1f}, dir));
   CHECK_NEAR(dir.w.z, -1.f, 1e-6f);
-  CHECK_NEAR(dir.beta.x, 3.f / y.pdf_a, 1e-3f);  // flux through the disk / (pdf of its point)
+  CHECK_NEAR(dir.origin.z, 2.f, 1e-5f);
+  CHECK(length(dir.origin - Vec3(1.f, 0.f, 2.f)) <= 2.f + 1e-5f);
+  CHECK_NEAR(dir.pdf_w, 1.f / (kPi * 4.f), 1e-7f);
+  CHECK(dir.pdf_w == pdf_Le_direction(e, dir.w));
+  CHECK_NEAR(dir.beta.x / (3.f / (0.5f * dir.pdf_w)), 1.f, 1e-5f);  // E / (pmf pdf_disk)
 }
 
 TEST_CASE("constant_emitter_samples_the_sphere_and_knows_its_density") {
@@ -264,6 +268,15 @@ TEST_CASE("constant_emitter_samples_the_sphere_and_knows_its_density") {
   CHECK_NEAR(ls.pdf_w, 0.25f / (4.f * kPi), 1e-7f);
   CHECK(ls.pdf_w == pdf_Li(e, 0.25f, ls.wi, 0.f, 1.f));
   CHECK(length(ls.p) > 3.f);
+  // A light subpath's start samples directions as next-event estimation does.
+  const EmitterPoint y = sample_Le_position(e, 0.25f, {0.2f, 0.9f});
+  CHECK((y.at_infinity && y.pdf_a == ls.pdf_w && y.pdf_a == pdf_Le_position(e, 0.25f, y.p)));
+  CHECK_NEAR(length(y.p - ls.wi), 0.f, 1e-6f);
+  EmitterDirection dir;
+  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, {0.6f, 0.3f}, dir));
+  CHECK_NEAR(dot(dir.w, y.p), -1.f, 1e-6f);
+  CHECK_NEAR(dot(dir.origin, y.p), 3.f, 1e-5f);  // on the disk facing the light, r from the centre
+  CHECK_NEAR(dir.beta.x / (0.5f / (y.pdf_a * dir.pdf_w)), 1.f, 1e-5f);
 }
 
 TEST_CASE("envmap_uses_mitsubas_lat_long_conventions") {

@@ -39,7 +39,7 @@ TEST_CASE("emitter_sampling_density_is_one_over_area") {
   CHECK_NEAR(choice.pmf, 1.f, 1e-6f);
   const EmitterPoint s = sample_Le_position(*choice.emitter, choice.pmf, {0.3f, 0.6f});
   CHECK_NEAR(s.pdf_a, 2.f, 1e-5f);  // area 1/2
-  CHECK_NEAR(pdf_Le_position(*choice.emitter, choice.pmf), 2.f, 1e-5f);
+  CHECK_NEAR(pdf_Le_position(*choice.emitter, choice.pmf, s.p), 2.f, 1e-5f);
   CHECK(s.prim == 0);
   CHECK((s.p.x >= 0.f && s.p.y >= 0.f && s.p.x + s.p.y <= 1.f + 1e-6f && s.p.z == 0.f));
 }

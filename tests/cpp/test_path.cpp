@@ -1,6 +1,8 @@
 // Camera importance and projection, and verify() on subpaths: it must find nothing wrong with
 // the walks' own bookkeeping and must notice a tampered density or throughput.
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "box_scene.h"
 #include "check.h"
@@ -89,11 +91,12 @@ TEST_CASE("verify_accepts_the_walks_and_catches_tampering") {
 namespace {
 
 // The closed box with a mirror quad standing in it, so that paths have delta vertices; with
-// `lights`, also the emitters without a surface.
-Scene box_with_mirror(std::vector<Emitter> lights = {}) {
+// `lights`, also the emitters without a surface; `open_top` leaves out the box's top (y = 1).
+Scene box_with_mirror(std::vector<Emitter> lights = {}, bool open_top = false) {
   std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
   std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
                              3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+  if (open_top) t.erase(t.begin() + 18, t.begin() + 24);
   std::vector<uint32_t> m(t.size() / 3, 0);
   const auto add = [&](std::initializer_list<float> xyz, uint32_t material) {
     const uint32_t base = static_cast<uint32_t>(p.size() / 3);
@@ -125,7 +128,7 @@ struct StrategySum {
 // cannot be hit: no s = 0 strategy, and its camera-side density is 0.
 StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeuristic heuristic) {
   const size_t n = full.size(), k = n - 1;
-  const bool point = full[k].at_point;
+  const bool point = is_delta_light(*full[k].emitter);  // no path hits it
   std::vector<float> p_cam(n, 0.f), p_light(n, 0.f);
   for (size_t j = 1; j < n; ++j) {
     if (full[j - 1].delta || (point && j == k)) continue;
@@ -232,4 +235,57 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_point_and_spot_lights") {
     }
   }
   CHECK(checked >= 100);
+}
+
+namespace {
+
+// A 16 x 8 sky brightening towards the zenith, with a bright patch.
+Emitter small_envmap() {
+  std::vector<float> rgb(3 * 16 * 8);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.2f + 0.1f * static_cast<float>((i / 48) % 8) + (i % 97 == 0 ? 20.f : 0.f);
+  const Frame id{Vec3(1.f, 0.f, 0.f), Vec3(0.f, 1.f, 0.f), Vec3(0.f, 0.f, 1.f)};
+  return EnvmapEmitter{std::make_shared<const EnvironmentMap>(16, 8, rgb, 1.f, id), {}};
+}
+
+}  // namespace
+
+TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_infinity") {
+  // The open-top box under an environment (constant, then an image) and a directional light.
+  // A camera subpath that leaves through the top ends at the environment's vertex at infinity
+  // (every strategy can make it: s = 0 hits it, s = 1 samples its direction, s >= 2 enter from
+  // the distant disk); closed instead by the directional light's vertex at infinity, no s = 0
+  // strategy can make the path (its direction is a delta) and the rest must sum to 1.
+  for (const Emitter& env : {Emitter{ConstantEmitter{Color(0.7f), {}}}, small_envmap()}) {
+    const Scene scene = box_with_mirror({env, make_directional(Vec3(0.3f, -1.f, 0.2f), Color(2.f))}, true);
+    const Emitter& sun = scene.emitters().back();
+    const Vec3 towards_sun = -normalize(Vec3(0.3f, -1.f, 0.2f));
+    const WalkLimits limits{6, 1 << 30};
+    TraceCounters rays;
+    Path path;
+    size_t escaped = 0, sunlit = 0;
+    for (uint32_t i = 0; i < 4000 && (escaped < 150 || sunlit < 150); ++i) {
+      IndependentSampler sampler(11, 1, i);
+      const Point2 u = sampler.next_2d();
+      camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+      const auto heuristic = (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance;
+      if (path.size() >= 3 && path.back().at_infinity) {
+        CHECK_NEAR(strategy_weight_sum(scene, path, heuristic).sum, 1.f, 2e-4f);
+        ++escaped;
+      }
+      for (size_t k = 2; k <= path.size(); ++k) {
+        if (path[k - 1].delta || path[k - 1].type != VertexType::Surface) continue;
+        Path full(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(k));
+        Vertex light;
+        light.type = VertexType::Light;
+        light.p = light.n = towards_sun;
+        light.emitter = &sun;
+        light.at_point = light.at_infinity = true;
+        full.push_back(light);
+        CHECK_NEAR(strategy_weight_sum(scene, full, heuristic).sum, 1.f, 2e-4f);
+        ++sunlit;
+      }
+    }
+    CHECK(escaped >= 150);
+    CHECK(sunlit >= 150);
+  }
 }
