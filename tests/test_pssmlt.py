@@ -164,10 +164,17 @@ MATERIAL_CASES = [
     ("sun", "pssmlt"),
     ("sky", "pssmlt"),
     ("envmap", "pssmlt"),
+    ("envmap", "mlt"),
+    ("sun", "mlt"),
+    ("sky", "mlt"),
 ]
-# Emitters at infinity (issue 20): the open-top box under a sun, a sky and an environment map;
-# path-space MLT refuses them so far. make test keeps the map with MMLT.
-LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:]) - {("point", "mmlt"), ("envmap", "mmlt")}
+# Emitters at infinity (issue 20): the open-top box under a sun, a sky and an environment map.
+# make test keeps the map with MMLT and path-space MLT.
+LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:]) - {
+    ("point", "mmlt"),
+    ("envmap", "mmlt"),
+    ("envmap", "mlt"),
+}
 
 
 def _params(cases: list[tuple[str, str]], long: set[tuple[str, str]]) -> list:

@@ -1214,9 +1214,9 @@ def compute_form_factors(patches: Scene, options: FormFactorOptions, progress: t
     """
     Form factors between the triangles of `patches` (one patch each): (FormFactors, stats). Every row, or with scatters (rho > 0 per patch) only rows of patches that reflect, and with receivers (R > 0 per patch) only those of non-zero importance for that view (form_factors.h).
     """
-def direct_irradiance(patches: Scene, points_per_axis: typing.SupportsInt | typing.SupportsIndex = 4, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> numpy.typing.NDArray[numpy.float64]:
+def direct_irradiance(patches: Scene, points_per_axis: typing.SupportsInt | typing.SupportsIndex = 4, env_strata: typing.SupportsInt | typing.SupportsIndex = 8, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> numpy.typing.NDArray[numpy.float64]:
     """
-    Mean irradiance (N, 3) over each patch of `patches` (one triangle each) from its point and spot lights, with visibility, at the centroids of an n x n split of the patch (radiosity/direct_irradiance.h).
+    Mean irradiance (N, 3) over each patch of `patches` (one triangle each) from its point, spot and directional lights and its environment (env_strata^2 pairs of directions per point), with visibility, at the centroids of an n x n split of the patch (radiosity/direct_irradiance.h).
     """
 @typing.overload
 def finish_chains(scene: Scene, camera: PinholeCamera, options: PssmltOptions, start: ChainStartUp, parts: collections.abc.Sequence[ChainPart], keyboard_interrupt: bool = False) -> dict:

@@ -7,12 +7,12 @@ direction are Dirac deltas: no path can hit them, so the path tracer reaches the
 next-event estimation, the light tracer only from their light subpaths, and BDPT only by the
 strategies that connect to them. Rays that leave the scene see the environments.
 
-Emitters at infinity render with every estimator but path-space MLT (``method="mlt"``
-refuses them with a ``ValueError`` naming the emitter, issue 20): light subpaths start at a
-direction at infinity and enter the scene from a disk of the scene's bounding-sphere radius
-facing it; BDPT's camera subpaths end at the environment's vertex at infinity. Radiosity's
-uniform solvers take directional lights as a first shot and refuse environments. A scene
-takes one environment, as in Mitsuba 3.
+Emitters at infinity render with every estimator: light subpaths start at a direction at
+infinity and enter the scene from a disk of the scene's bounding-sphere radius facing it;
+BDPT's camera subpaths end at the environment's vertex at infinity, which path-space MLT's
+mutations reach from the light side. Radiosity's
+uniform solvers take them all as a first shot (the irradiance each patch receives directly).
+A scene takes one environment, as in Mitsuba 3.
 
 Examples
 --------

@@ -219,11 +219,14 @@ void bind_radiosity(py::module_& m) {
 
   m.def(
       "direct_irradiance",
-      [](std::shared_ptr<const Scene> patches, int points_per_axis, int threads, const py::object& progress) {
+      [](std::shared_ptr<const Scene> patches, int points_per_axis, int env_strata, uint64_t seed, int threads,
+         const py::object& progress) {
         if (points_per_axis < 1 || points_per_axis > 64) throw py::value_error("points_per_axis must be in [1, 64]");
+        if (env_strata < 1 || env_strata > 64) throw py::value_error("env_strata must be in [1, 64]");
         RenderControl control;
-        auto run = run_interruptible([&] { return direct_irradiance(*patches, points_per_axis, threads, control); },
-                                     control, progress);
+        auto run = run_interruptible(
+            [&] { return direct_irradiance(*patches, points_per_axis, env_strata, seed, threads, control); }, control,
+            progress);
         if (run.keyboard_interrupt) {  // patches are missing: nothing worth keeping
           PyErr_SetNone(PyExc_KeyboardInterrupt);
           throw py::error_already_set();
@@ -236,9 +239,11 @@ void bind_radiosity(py::module_& m) {
         }
         return out;
       },
-      py::arg("patches"), py::arg("points_per_axis") = 4, py::arg("threads") = 0, py::arg("progress") = py::none(),
-      "Mean irradiance (N, 3) over each patch of `patches` (one triangle each) from its point and spot lights, "
-      "with visibility, at the centroids of an n x n split of the patch (radiosity/direct_irradiance.h).");
+      py::arg("patches"), py::arg("points_per_axis") = 4, py::arg("env_strata") = 8, py::arg("seed") = 0,
+      py::arg("threads") = 0, py::arg("progress") = py::none(),
+      "Mean irradiance (N, 3) over each patch of `patches` (one triangle each) from its point, spot and directional "
+      "lights and its environment (env_strata^2 pairs of directions per point), with visibility, at the centroids "
+      "of an n x n split of the patch (radiosity/direct_irradiance.h).");
 
   py::class_<RadiositySystem, std::shared_ptr<RadiositySystem>>(m, "RadiositySystem",
                                                                 "M = I - diag(rho) F for 3 channels.")

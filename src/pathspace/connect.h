@@ -22,6 +22,7 @@ namespace dualight {
 // towards b's direction when b is at infinity.
 inline bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b, TraceCounters& counters) {
   if (b.at_infinity) return shadow_ray_visible_point(scene, a.p, a.n, scene.beyond(a.p, b.n), counters);
+  if (a.at_infinity) return shadow_ray_visible_point(scene, b.p, b.n, scene.beyond(b.p, a.n), counters);
   if (b.on_surface() && !a.on_surface()) return shadow_ray_visible_point(scene, b.p, b.n, a.p, counters);
   return shadow_ray_visible_to(scene, a.p, a.n, a.on_surface() ? a.prim : Scene::kNoTriangle, b.p, b.prim,
                                b.on_surface(), counters);
@@ -55,7 +56,7 @@ inline Vertex camera_vertex(const PinholeCamera& camera) {
 // direction through a delta position).
 inline Color connect_camera_to_infinity(const Scene& scene, const PinholeCamera& camera, const Vertex& qs,
                                         Point2& raster, TraceCounters& counters) {
-  if (is_delta_direction(*qs.emitter) || !camera.raster_position(camera.origin() + qs.n, raster)) {
+  if (is_delta_direction(*qs.emitter) || !raster_of(camera, qs, raster)) {
     ++counters.skipped_connections;
     return Color(0.f);
   }

@@ -27,7 +27,7 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
   PathValue value;
   const size_t k = z.size() - 1;
   if (z.size() < 2 || !z[0].is_emitter()) return value;
-  if (!camera.raster_position(z[k - 1].p, raster)) return value;
+  if (!raster_of(camera, z[k - 1], raster)) return value;
   // Per channel in double: the product of k BSDFs and geometry terms leaves float's range.
   const Color Le = emitted_towards(z[0], z[1].p);
   double f[3] = {Le.x, Le.y, Le.z};
@@ -69,7 +69,7 @@ double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced) 
 }
 
 double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool forced) {
-  // No walk hits a vertex without a surface (a point emitter at x_0).
+  // No walk hits a vertex without a surface (a point emitter at x_0, one at infinity).
   if (!z[i].on_surface()) return 0.0;
   const Vertex& v = z[i + 1];
   const Vec3 w = direction(v, z[i]);
@@ -82,10 +82,13 @@ double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool f
   return solid_angle_to_area(surface_pdf_w(v, to_eye, w, TransportMode::Radiance), v, z[i]);
 }
 
-bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters) {
-  // Off a surface; from the eye past its clearance; from any other point as it is.
+bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters,
+                  const Vec3& origin) {
+  // Off a surface; from the eye past its clearance; from infinity at `origin`; from any other
+  // point as it is.
   const Ray ray = from.on_surface() ? Ray{scene.spawn_origin(from.p, dot(d, from.n) > 0.f ? from.n : -from.n), d}
                   : from.type == VertexType::Camera ? scene.eye_ray(Ray{from.p, d})
+                  : from.at_infinity                ? Ray{origin, d}
                                                     : Ray{from.p, d};
   SurfaceHit h;
   ++counters.rays;

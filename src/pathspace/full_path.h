@@ -19,8 +19,13 @@ namespace dualight {
 
 inline bool is_specular(const Vertex& v) { return v.type == VertexType::Surface && is_delta(v.material->bsdf); }
 
-// |cos| at both ends over distance squared; no cosine at the pinhole camera.
+// |cos| at both ends over distance squared; no cosine at the pinhole camera. To a vertex at
+// infinity: the cosine at the other end alone (no distance, no cosine at infinity).
 inline double geometry_term(const Vertex& a, const Vertex& b) {
+  if (a.at_infinity || b.at_infinity) {
+    const Vertex& v = a.at_infinity ? b : a;
+    return v.on_surface() ? std::abs(dot(v.n, direction(a, b))) : 1.0;
+  }
   const Vec3 d = b.p - a.p;
   const double dist2 = dot(d, d);
   if (!(dist2 > 0.0)) return 0.0;
@@ -52,13 +57,18 @@ PathValue path_contribution(const PinholeCamera& camera, const Path& z, Point2& 
 
 // Area density with which the light side's walk generates z[i] (from z[i-1], having come from
 // z[i-2]; i = 0: the emitter sample), and with which the camera side's walk generates z[i] (from
-// z[i+1], having come from z[i+2]; from the camera when i + 1 = k). `forced`: the specular lobe
+// z[i+1], having come from z[i+2]; from the camera when i + 1 = k). The mutations' camera-side
+// walks end at surfaces (trace_vertex), never at a vertex at infinity: its camera-side density
+// is 0, as a point light's. `forced`: the specular lobe
 // was chosen, not sampled (perturbations follow the old path's lobes), so prob is 1.
 double pdf_from_light(const Scene& scene, const Path& z, size_t i, bool forced = false);
 double pdf_from_eye(const PinholeCamera& camera, const Path& z, size_t i, bool forced = false);
 
-// The surface point a ray from `from` along unit d hits first, as a surface vertex.
-bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters);
+// The surface point a ray from `from` along unit d hits first, as a surface vertex (a ray that
+// leaves the scene finds none). From a vertex at infinity the ray starts at `origin` on the
+// distant disk (EmitterDirection::origin).
+bool trace_vertex(const Scene& scene, const Vertex& from, const Vec3& d, Vertex& hit, TraceCounters& counters,
+                  const Vec3& origin = {});
 
 
 // Samples a scattering direction at surface vertex v arriving from direction wo (world, unit), as

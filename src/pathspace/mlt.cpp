@@ -9,7 +9,6 @@
 #include <utility>
 
 #include "core/distribution.h"
-#include "pathspace/emitter_support.h"
 #include "core/mean_estimate.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
@@ -254,7 +253,6 @@ Chain start_chain(const Scene& scene, const PinholeCamera& camera, const BdptOpt
 
 // One population of every path length: the chains that found a start path share the mutations.
 void check_path_space_supports(const Scene& scene) {
-  refuse_emitters_at_infinity(scene, "mlt");
   // A path's vertices are specular or not by their BSDF (full_path.h), so a path through the
   // Dirac lobe of a BSDF that also has a diffuse or glossy one would be evaluated without it.
   if (scene.features().mixed_delta) {

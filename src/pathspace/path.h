@@ -138,6 +138,11 @@ inline Vec3 direction(const Vertex& from, const Vertex& to) {
   return normalize(to.p - from.p);
 }
 
+// The film position where the camera sees vertex v (a vertex at infinity: its direction).
+inline bool raster_of(const PinholeCamera& camera, const Vertex& v, Point2& raster) {
+  return camera.raster_position(v.at_infinity ? camera.origin() + v.n : v.p, raster);
+}
+
 // Area density at `to` of a solid-angle density at `from` towards `to`. Towards infinity the
 // measure stays solid angle; from infinity pdf_w is the distant disk's planar density, which
 // becomes an area density by the cosine at `to`.

@@ -3,7 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/frame.h"
 #include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 
 namespace dualight {
 
@@ -32,29 +35,64 @@ Color irradiance_from(const Scene& scene, const Emitter& e, const Vec3& p, const
   return scene.visible_point(p, n, ls.p) ? ls.Le * cos_theta : Color(0.f);
 }
 
+// Irradiance at p (normal n, front side) from the environment, visibility included: m x m
+// stratified pairs of one cosine-weighted direction and one the environment samples, combined
+// by the balance heuristic [Veach 1997, sec. 9.2], strata shifted by rng (Cranley-Patterson).
+Color environment_irradiance(const Scene& scene, const Emitter& env, const Vec3& p, const Vec3& n, int m, Pcg32& rng) {
+  const Frame frame = Frame::from_normal(n);
+  const Point2 shift{rng.next_float(), rng.next_float()};
+  const auto stratum = [&](int a, int b) {
+    const float u = (static_cast<float>(a) + shift.u) / static_cast<float>(m);
+    const float v = (static_cast<float>(b) + shift.v) / static_cast<float>(m);
+    return Point2{u, v};
+  };
+  // One direction's share: L cos V / (pdf_cos + pdf_env), the balance heuristic's estimate.
+  const auto share = [&](const Vec3& w) {
+    const float cos_theta = dot(n, w);
+    if (!(cos_theta > 0.f)) return Color(0.f);
+    const float pdf = cos_theta * kInvPi + pdf_Li(env, 1.f, w, 0.f, 1.f);
+    const Color L = radiance(env, -w) * (cos_theta / pdf);
+    if (is_black(L) || !scene.visible_point(p, n, scene.beyond(p, w))) return Color(0.f);
+    return L;
+  };
+  Color sum(0.f);
+  for (int a = 0; a < m; ++a) {
+    for (int b = 0; b < m; ++b) {
+      sum += share(frame.to_world(square_to_cosine_hemisphere(stratum(a, b))));
+      LightSample ls;
+      if (sample_Li(env, 1.f, p, stratum(b, a), ls)) sum += share(ls.wi);
+    }
+  }
+  return sum / static_cast<float>(m * m);
+}
+
 }  // namespace
 
-std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, int threads,
-                                     RenderControl& control) {
+std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, int env_strata, uint64_t seed,
+                                     int threads, RenderControl& control) {
   if (points_per_axis < 1 || points_per_axis > 64) throw std::invalid_argument("points_per_axis must be in [1, 64]");
+  if (env_strata < 1 || env_strata > 64) throw std::invalid_argument("env_strata must be in [1, 64]");
   std::vector<const Emitter*> points;
   for (const Emitter& e : patches.emitters()) {
     if (is_delta_light(e)) points.push_back(&e);
   }
+  const Emitter* env = patches.environment().empty() ? nullptr : patches.environment().front();
   const size_t n = patches.triangle_count();
   std::vector<Color> H(n, Color(0.f));
   control.total.store(n);
-  if (points.empty()) return H;
+  if (points.empty() && env == nullptr) return H;
   const std::vector<Point2> grid = centroid_grid(points_per_axis);
   parallel_for_each_index(threads, n, [&](size_t k) {
     if (control.cancelled()) return;
     const uint32_t prim = static_cast<uint32_t>(k);
     const Vec3 normal = patches.normal(prim);
+    Pcg32 rng(seed, k);
     Color sum(0.f);
     for (const Point2 b : grid) {
       const Vec3 p = patches.vertex(prim, 0) * (1.f - b.u - b.v) + patches.vertex(prim, 1) * b.u +
                      patches.vertex(prim, 2) * b.v;
       for (const Emitter* e : points) sum += irradiance_from(patches, *e, p, normal);
+      if (env != nullptr) sum += environment_irradiance(patches, *env, p, normal, env_strata, rng);
     }
     H[k] = sum / static_cast<float>(grid.size());
     control.done.fetch_add(1, std::memory_order_relaxed);

@@ -206,17 +206,6 @@ def sub_triangle_uv(scene: Scene, root: np.ndarray, vertices: np.ndarray) -> np.
 
 
 
-def refuse_environments(scene: Scene) -> None:
-    """Raise ``ValueError`` if ``scene`` holds an environment (radiosity takes none yet)."""
-    from dualight.emitters import ConstantEnvironment, EnvironmentMap
-
-    for e in scene.emitters:
-        if isinstance(e, ConstantEnvironment | EnvironmentMap):
-            raise ValueError(
-                f"radiosity does not take environments yet: the scene has a {type(e).__name__} "
-                "(point, spot and directional lights enter the uniform solvers as a first shot)"
-            )
-
 class PatchMesh:
     """The scene's triangles subdivided into patches.
 
@@ -393,19 +382,19 @@ class PatchMesh:
         points_per_axis: int = 4,
         threads: int = 0,
         progress: Callable[[int, int], None] | None = None,
+        *,
+        env_strata: int = 8,
+        seed: int = 0,
     ) -> np.ndarray:
         """``(N, 3)`` mean irradiance over each patch straight from the scene's point, spot and
-        directional lights (:meth:`dualight.Scene.add_emitter`), with visibility, at the
-        centroids of a ``points_per_axis`` x ``points_per_axis`` split of the patch; zeros
-        without such lights. The uniform solvers add ``reflectance * direct_irradiance()`` to
-        the emitted radiosity: the lights' first shot.
-
-        Raises
-        ------
-        ValueError
-            If the scene holds an environment (constant or envmap): its irradiance is an
-            integral over the sky that radiosity does not compute yet."""
-        refuse_environments(self._scene)
+        directional lights and its environment (:meth:`dualight.Scene.add_emitter`), with
+        visibility, at the centroids of a ``points_per_axis`` x ``points_per_axis`` split of
+        the patch; zeros without such emitters. The environment's irradiance at a point is an
+        integral over its hemisphere, estimated from ``env_strata``^2 stratified pairs of a
+        cosine-weighted direction and one the environment samples (multiple importance
+        sampling; random shifts from ``seed``). The uniform solvers add
+        ``reflectance * direct_irradiance()`` to the emitted radiosity: the emitters' first
+        shot."""
         if not self._scene.emitters:
             return np.zeros((len(self), 3))
         from dualight import _core
@@ -419,7 +408,7 @@ class PatchMesh:
             np.zeros((n_mesh, 3), np.float32),
             emitters=[e._core_emitter() for e in self._scene.emitters],
         )
-        return _core.direct_irradiance(lit, points_per_axis, threads, progress)
+        return _core.direct_irradiance(lit, points_per_axis, env_strata, seed, threads, progress)
 
     def __repr__(self) -> str:
         return f"PatchMesh({len(self)} patches, {len(self.vertices)} vertices)"

@@ -14,7 +14,7 @@ import numpy as np
 from dualight import _core
 from dualight.methods import RadiosityMethod
 from dualight.radiosity.hierarchical import HierarchicalSolver, Oracle
-from dualight.radiosity.patches import PatchMesh, refuse_environments
+from dualight.radiosity.patches import PatchMesh
 from dualight.radiosity.solution import Solution, receiver
 from dualight.radiosity.solvers import SOLVERS, DirectSolver, Step
 from dualight.scene import Camera, Scene, _freezes_scene
@@ -258,7 +258,6 @@ def solve(
         raise ValueError("the receiver needs a camera: pass camera= or give the scene one")
     if not scene.has_emitters:
         raise ValueError("scene has no emitter: give some mesh a positive emission")
-    refuse_environments(scene)
     if patches is None:
         if max_edge is None and max_area is None:
             lo, hi = scene.bounds()
@@ -295,8 +294,9 @@ def solve(
         if bar is not None:
             bar.close()
     system = _core.RadiositySystem(F, patches.reflectance, patches.areas)
-    # Point, spot and directional lights enter as their first shot: the reflected part of the
-    # irradiance they give each patch directly (Cohen and Wallace 1993, sec. 2.3).
+    # Point, spot and directional lights and environments enter as their first shot: the
+    # reflected part of the irradiance they give each patch directly (Cohen and Wallace 1993,
+    # sec. 2.3).
     E = patches.emission
     if scene.emitters:
         callback, bar = _progress_of(progress, "direct light")

@@ -95,17 +95,18 @@ bool BidirectionalMutation::propose(const MutationContext& ctx, const Path& x, P
       continue;
     }
     const Vertex& v = y.back();
-    Vec3 d;
+    Vec3 d, origin;  // origin: the distant disk's point when v is at infinity
     if (y.size() == 1) {
       // A direction of density 0 still makes the path: its transition density is then 0.
       EmitterDirection emitted;
       sample_Le_direction(*v.emitter, v.pdf_fwd, v.p, next_2d(rng), emitted);
       d = emitted.w;
+      origin = emitted.origin;
     } else if (!sample_scatter(v, direction(v, y[y.size() - 2]), TransportMode::Importance, next_2d(rng), d)) {
       return false;
     }
     Vertex hit;
-    if (!trace_vertex(ctx.scene, v, d, hit, ctx.counters)) return false;
+    if (!trace_vertex(ctx.scene, v, d, hit, ctx.counters, origin)) return false;
     y.push_back(hit);
   }
   // The camera side, built backwards: the kept suffix reversed, then ka - s new vertices.

@@ -21,9 +21,11 @@ double jacobian_density(const Scene& scene, const Path& z, int j) {
 
 }  // namespace
 
+// Not from a vertex at infinity (j = 0 on the sky): the direction leaving it is its position's
+// and the disk's, not a solid angle to perturb. Mutations keep x[0], so y is unsuitable too.
 bool CausticPerturbation::suitable(const Path& x) const {
   const int k = static_cast<int>(x.size()) - 1;
-  return k >= 3 && !is_specular(x[k - 1]) && is_specular(x[k - 2]);
+  return k >= 3 && !is_specular(x[k - 1]) && is_specular(x[k - 2]) && !(x[0].at_infinity && chain_start(x) == 0);
 }
 
 bool CausticPerturbation::propose(const MutationContext& ctx, const Path& x, Pcg32& rng, Path& y,

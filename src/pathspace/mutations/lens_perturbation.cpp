@@ -31,7 +31,7 @@ bool EyePerturbation::suitable(const Path& x) const {
 bool EyePerturbation::propose(const MutationContext& ctx, const Path& x, Pcg32& rng, Path& y, Transition& t) const {
   const int k = static_cast<int>(x.size()) - 1;
   Point2 raster;
-  if (!ctx.camera.raster_position(x[k - 1].p, raster)) return false;
+  if (!raster_of(ctx.camera, x[k - 1], raster)) return false;
   const float r = film_.sample(rng.next_float()), phi = 2.f * kPi * rng.next_float();
   const float fx = raster.u + r * std::cos(phi), fy = raster.v + r * std::sin(phi);
   if (!(fx >= 0.f && fy >= 0.f && fx < static_cast<float>(ctx.camera.width()) &&
