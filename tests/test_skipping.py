@@ -84,6 +84,25 @@ def test_unneeded_shadow_rays_are_skipped_and_the_image_is_unchanged(method: str
     assert bad.pass_fraction < 1.0, bad.max_z
 
 
+# strategies that find nothing: scenes lit by delta lights only --------------------------------
+def test_strategies_that_cannot_find_delta_lights_are_skipped_and_said() -> None:
+    """With only point, spot or directional lights no path hits an emitter: BDPT does not
+    evaluate s = 0 and MMLT does not offer it; the stats say so, and say nothing of it where
+    an area light or an environment can be hit. (BDPT's images of such scenes stayed
+    bit-identical to those before the skip: issue 20's note.)"""
+    said = "s = 0: every emitter is a delta light (no path hits one)"
+    point = scenes.cornell_box((16, 16), variant="point")
+    kw = dict(spp=8, seed=3, max_depth=5, progress=False)
+    img = dl.render(point, "bdpt", **kw)
+    assert img.stats["skipped"]["strategies"] == [said]
+    mmlt = dl.render(point, "mmlt", mutations_per_pixel=2, max_depth=5, progress=False)
+    assert mmlt.stats["skipped"]["strategies"] == [said]
+    kept = dl.render(point, "mmlt", mutations_per_pixel=2, max_depth=5, progress=False, skip=False)
+    assert "strategies" not in kept.stats["skipped"]
+    for lit in (scenes.cornell_box((16, 16)), scenes.cornell_box((16, 16), variant="sky")):
+        assert "strategies" not in dl.render(lit, "bdpt", **kw).stats["skipped"]
+
+
 @pytest.mark.parametrize("method", ["pssmlt", "mlt"])
 def test_metropolis_methods_skip_shadow_rays_too(method: str) -> None:
     kw = dict(mutations_per_pixel=8, progress=False, mlt={"bootstrap": 4000, "direct_spp": 4})

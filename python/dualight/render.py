@@ -63,10 +63,13 @@ def _scene_features(scene: Scene, camera: Camera | None = None) -> dict[str, Any
     return features
 
 
-def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
+def _skipped(stats: dict[str, Any], skip: bool, scene: Scene, method: str) -> dict[str, Any]:
     """What a render left out, from its counters: shadow rays known unneeded (convex
     enclosure), connections that could not carry light (a specular end, a zero BSDF or
-    emission term, a point outside the view), mutations the scene cannot use."""
+    emission term, a point outside the view), mutations the scene cannot use, and BDPT's
+    strategies that cannot find light in a scene lit only by delta lights (point, spot and
+    directional: no path hits one, so s = 0 finds nothing; BDPT and PSSMLT do not evaluate
+    them, MMLT does not offer them)."""
     out: dict[str, Any] = {
         "enabled": skip,
         "shadow_rays": int(stats.get("skipped_shadow_rays", 0)),
@@ -74,7 +77,18 @@ def _skipped(stats: dict[str, Any], skip: bool) -> dict[str, Any]:
     }
     if "skipped_mutations" in stats:
         out["mutations"] = list(stats["skipped_mutations"])
+    bidirectional = method in ("bdpt", "pssmlt") or (method == "mmlt" and skip)
+    if bidirectional and not _hittable_emitter(scene):
+        out["strategies"] = ["s = 0: every emitter is a delta light (no path hits one)"]
     return out
+
+
+def _hittable_emitter(scene: Scene) -> bool:
+    """Whether a path can hit an emitter: an area light or an environment."""
+    from dualight.emitters import ConstantEnvironment, EnvironmentMap
+
+    environment = any(isinstance(e, ConstantEnvironment | EnvironmentMap) for e in scene.emitters)
+    return environment or any(m.is_emitter for m in scene.meshes)
 
 
 def _budget(
@@ -340,7 +354,7 @@ def render(
         # What the scene asks for: without mirrors or glass no connection is skipped as specular.
         stats["specular_surfaces"] = scene.has_specular
         stats["scene"] = _scene_features(scene, cam)
-        stats["skipped"] = _skipped(stats, skip)
+        stats["skipped"] = _skipped(stats, skip, scene, method)
         if method != "path":
             stats["light_paths"] = result["light_paths"]
         if method == "bdpt":

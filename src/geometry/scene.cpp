@@ -96,6 +96,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   }
   for (const Emitter& e : emitters_) {
     if (is_infinite(e) && !is_delta_direction(e)) environment_.push_back(&e);
+    hittable_emitter_ = hittable_emitter_ || !is_delta_light(e);
   }
   // As Mitsuba 3 ("Only one environment emitter can be specified per scene"): the sky a ray
   // escapes to is one emitter, whose density BDPT's vertex at infinity carries.

@@ -101,6 +101,10 @@ class Scene {
   // most one, as in Mitsuba), a pointer into emitters(); empty in most scenes, which then look
   // nothing up on a miss.
   const std::vector<const Emitter*>& environment() const { return environment_; }
+  // Whether a path can hit some emitter (an area light or an environment): false when every
+  // emitter is a delta light (point, spot, directional), whose light only strategies that
+  // sample the emitter find.
+  bool has_hittable_emitter() const { return hittable_emitter_; }
   // Power-proportional choice of an emitter (there must be some), and its probability for `e`.
   EmitterChoice choose_emitter(float u) const {
     const size_t i = emitter_sampler_.sample(u);
@@ -164,6 +168,7 @@ class Scene {
   std::vector<Emitter> emitters_;           // one AreaEmitter per emissive triangle, in triangle order
   std::vector<uint32_t> emitter_of_prim_;   // index into emitters_, kNoEmitter for the others
   std::vector<const Emitter*> environment_;  // into emitters_ (fixed after construction)
+  bool hittable_emitter_ = false;
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;
   BoundingSphere sphere_;

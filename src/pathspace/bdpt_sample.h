@@ -25,14 +25,17 @@ struct Subpaths {
 // Every strategy (s, t) joining the two subpaths, of depth s + t - 1 within [opt.min_depth,
 // opt.max_depth], that carries light: visit(s, t, unweighted contribution, sampled, raster),
 // where `sampled` stands in for the emitter end (s = 1) or the camera (t = 1) and `raster` is
-// the film position of a light-tracing strategy (t = 1). Connections draw from `sampler`.
+// the film position of a light-tracing strategy (t = 1). Connections draw from `sampler`. In a
+// scene lit only by delta lights no camera subpath ends on an emitter: the strategies s = 0
+// are not evaluated (render.py's stats say so).
 template <class Sampler, class Visit>
 void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt,
                        const Subpaths& paths, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
   const Path& cam = paths.camera;
   const Path& light = paths.light;
+  const int s_first = scene.has_hittable_emitter() ? 0 : 1;
   for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
-    for (int s = 0; s <= static_cast<int>(light.size()); ++s) {
+    for (int s = s_first; s <= static_cast<int>(light.size()); ++s) {
       const int depth = s + t - 1;
       if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
       if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all

@@ -8,8 +8,11 @@ void StrategyEvaluator::operator()(PrimarySampleSampler& sampler, Contribution& 
   out.splats.clear();
   out.f = 0.f;
   const int d = depth_;
-  const int n = d == 1 ? 1 : d + 1;  // (s, t) with s + t = d + 1, t >= 1; (1, 1) only as (0, 2)
-  const int s = d == 1 ? 0 : std::min(static_cast<int>(sampler.next_1d() * static_cast<float>(n)), n - 1);
+  // (s, t) with s + t = d + 1, t >= 1, s >= s_first_; (1, 1) only as (0, 2).
+  const int n = (d == 1 ? 1 : d + 1) - s_first_;
+  const float u_strategy = d == 1 ? 0.f : sampler.next_1d();
+  if (n <= 0) return;
+  const int s = d == 1 ? 0 : s_first_ + std::min(static_cast<int>(u_strategy * static_cast<float>(n)), n - 1);
   const int t = d + 1 - s;
   const Point2 film = camera_.film_position(sampler.next_2d());
   const float x = film.u, y = film.v;

@@ -5,7 +5,9 @@
 // selection probability 1 / (number of strategies), so the chains' mutations move between
 // strategies as well as paths, and spend no time on strategies that contribute little. The
 // populations' chains, mutations and time are allocated in pssmlt.cpp in proportion to each
-// length's bootstrap b_d.
+// length's bootstrap b_d. In a scene lit only by delta lights (with skip_unneeded) the
+// strategies s = 0, which find nothing there, are not offered: each evaluation picks among
+// the others, and paths of one segment (only (0, 2)) contribute nothing.
 #pragma once
 #include <cstdint>
 
@@ -21,7 +23,11 @@ namespace dualight {
 class StrategyEvaluator {
  public:
   StrategyEvaluator(const Scene& scene, const PinholeCamera& camera, const PssmltOptions& opt, int depth)
-      : scene_(scene), camera_(camera), depth_(depth), bdpt_(chain_bdpt(opt)) {}
+      : scene_(scene),
+        camera_(camera),
+        depth_(depth),
+        bdpt_(chain_bdpt(opt)),
+        s_first_(opt.skip_unneeded && !scene.has_hittable_emitter() ? 1 : 0) {}
 
   void operator()(PrimarySampleSampler& sampler, Contribution& out, TraceCounters& counters);
   uint64_t invalid() const { return invalid_; }
@@ -31,6 +37,7 @@ class StrategyEvaluator {
   const PinholeCamera& camera_;
   int depth_;
   BdptOptions bdpt_;
+  int s_first_;  // 1: no strategy with s = 0 (no emitter a path can hit)
   Subpaths paths_;
   uint64_t invalid_ = 0;
 };
