@@ -216,7 +216,16 @@ def _max_t(mutation: str, transition_ratio: str) -> tuple[float, float, dict]:
     return float(np.abs(t_sums).max()), float(np.abs(t_blocks).max()), counts
 
 
-@pytest.mark.parametrize("mutation", sorted(CASES))
+# Marked long (make test-long) for make test's time: the sun's bidirectional chains and the
+# map's lens subpaths (make test keeps the map's bidirectional chains, which start light
+# subpaths at infinity and connect to it).
+LONG_CASES = {"bidirectional (sun)", "lens_subpath (envmap)"}
+
+
+@pytest.mark.parametrize(
+    "mutation",
+    [pytest.param(m, marks=[pytest.mark.long] if m in LONG_CASES else []) for m in sorted(CASES)],
+)
 def test_single_mutation_chains_match_bdpt(mutation: str) -> None:
     """Chains of one mutation give BDPT's image (|t| < T_MAX for every channel sum and block
     share); the mutation is proposed for at least 15 % of the chains' steps and accepted for at

@@ -35,20 +35,12 @@ inline Color radiance(const ConstantEmitter& e, const Vec3&) { return e.L; }
 
 inline float pdf_Le_position(const ConstantEmitter&, float pmf, const Vec3& = {}) { return pmf * kUniformSpherePdf; }
 inline EmitterPoint sample_Le_position(const ConstantEmitter&, float pmf, Point2 u) {
-  const Vec3 w = square_to_uniform_sphere(u);
-  EmitterPoint y{w, w, pmf * kUniformSpherePdf, 0, false};
-  y.at_infinity = true;
-  return y;
+  return point_at_infinity(square_to_uniform_sphere(u), pmf * kUniformSpherePdf);
 }
 inline float pdf_Le_direction(const ConstantEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // From direction `at` (towards the emitter): a ray along -at from the distant disk.
 inline bool sample_Le_direction(const ConstantEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
-  d.w = -at;
-  d.origin = distant_disk_point(e.scene, at, u);
-  d.pdf_w = distant_disk_pdf(e.scene);
-  if (!(pdf_a > 0.f)) return false;
-  d.beta = e.L / (pdf_a * d.pdf_w);
-  return true;
+  return ray_from_infinity(e.scene, at, e.L, pdf_a, u, d);
 }
 
 // A uniform direction on the sphere, to a point beyond the bounding sphere (the shadow ray's end).

@@ -46,20 +46,13 @@ inline Color radiance(const DirectionalEmitter& e, const Vec3&) { return e.E; }
 // (lights/distant_disk.h) from which the ray travels along w.
 inline float pdf_Le_position(const DirectionalEmitter&, float pmf, const Vec3& = {}) { return pmf; }
 inline EmitterPoint sample_Le_position(const DirectionalEmitter& e, float pmf, Point2) {
-  EmitterPoint y{-e.frame.n, -e.frame.n, pmf, 0, false};
-  y.at_infinity = true;
-  return y;
+  return point_at_infinity(-e.frame.n, pmf);
 }
 inline float pdf_Le_direction(const DirectionalEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // beta = E / (pdf_a pdf_disk): the flux through the disk over the choice's probability.
 inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, const Vec3&, Point2 u,
                                 EmitterDirection& d) {
-  d.w = e.frame.n;
-  d.origin = distant_disk_point(e.scene, -e.frame.n, u);
-  d.pdf_w = distant_disk_pdf(e.scene);
-  if (!(pdf_a > 0.f)) return false;
-  d.beta = e.E / (pdf_a * d.pdf_w);
-  return true;
+  return ray_from_infinity(e.scene, -e.frame.n, e.E, pdf_a, u, d);
 }
 
 // Seen from `ref`: towards -w, to a point beyond the bounding sphere (the shadow ray's end);

@@ -8,6 +8,7 @@
 #include "core/bounding_sphere.h"
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "lights/emitter_sample.h"
 
 namespace dualight {
 
@@ -17,6 +18,26 @@ inline float distant_disk_pdf(const BoundingSphere& s) { return 1.f / (kPi * s.r
 inline Vec3 distant_disk_point(const BoundingSphere& s, const Vec3& towards_light, Point2 u) {
   const Point2 d = square_to_uniform_disk(u);
   return s.center + Frame::from_normal(towards_light).to_world(Vec3(d.u, d.v, 1.f)) * s.radius;
+}
+
+// A light subpath's start at unit direction `towards_light` with density pdf_a (solid angle,
+// or a direction's probability).
+inline EmitterPoint point_at_infinity(const Vec3& towards_light, float pdf_a) {
+  EmitterPoint y{towards_light, towards_light, pdf_a, 0, false};
+  y.at_infinity = true;
+  return y;
+}
+
+// The ray that brings radiance Le from `towards_light` (sampled with density pdf_a) into the
+// scene: from the distant disk, along -towards_light; beta = Le / (pdf_a pdf_disk).
+inline bool ray_from_infinity(const BoundingSphere& s, const Vec3& towards_light, const Color& Le, float pdf_a,
+                              Point2 u, EmitterDirection& d) {
+  d.w = -towards_light;
+  d.origin = distant_disk_point(s, towards_light, u);
+  d.pdf_w = distant_disk_pdf(s);
+  if (!(pdf_a > 0.f)) return false;
+  d.beta = Le / (pdf_a * d.pdf_w);
+  return true;
 }
 
 }  // namespace dualight

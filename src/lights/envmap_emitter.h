@@ -39,19 +39,12 @@ inline float pdf_Le_position(const EnvmapEmitter& e, float pmf, const Vec3& at) 
 inline EmitterPoint sample_Le_position(const EnvmapEmitter& e, float pmf, Point2 u) {
   float pdf = 0.f;
   const Vec3 w = e.map->sample(u, pdf);
-  EmitterPoint y{w, w, pmf * pdf, 0, false};
-  y.at_infinity = true;
-  return y;
+  return point_at_infinity(w, pmf * pdf);
 }
 inline float pdf_Le_direction(const EnvmapEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // From direction `at` (towards the emitter): a ray along -at from the distant disk.
 inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
-  d.w = -at;
-  d.origin = distant_disk_point(e.scene, at, u);
-  d.pdf_w = distant_disk_pdf(e.scene);
-  if (!(pdf_a > 0.f)) return false;
-  d.beta = e.map->eval(at) / (pdf_a * d.pdf_w);
-  return true;
+  return ray_from_infinity(e.scene, at, e.map->eval(at), pdf_a, u, d);
 }
 
 // A direction sampled by the map's luminance, to a point beyond the bounding sphere.
