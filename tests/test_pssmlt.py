@@ -134,10 +134,6 @@ LONG_CASES = {
     ("cornell", "pssmlt_plain"),
     ("door", "mlt_flat"),
     ("caustics", "mmlt"),
-    # 37 s, make test's longest (issue 20 brought make test to 14:41): MMLT under a time
-    # limit, twice the mutation-budget renders' time; test_stats_and_options keeps checking
-    # that a time limit stops MMLT.
-    ("cornell", "mmlt_time"),
 }
 # Glossy, coated, smooth-shaded and textured materials, and point and spot lights (issue 20),
 # in the three Metropolis methods (path-space MLT refuses the coated box's smooth plastic
