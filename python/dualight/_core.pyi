@@ -35,6 +35,11 @@ class Scene:
         What the scene holds, computed once at construction (see scene_features.h).
         """
     @property
+    def has_hittable_emitter(self) -> bool:
+        """
+        Whether a path can hit an emitter (an area light or an environment); false when every emitter is a point, spot or directional light.
+        """
+    @property
     def triangle_count(self) -> int:
         ...
 class PinholeCamera:

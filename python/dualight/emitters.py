@@ -269,5 +269,5 @@ class EnvironmentMap:
 
 Emitter = PointLight | SpotLight | DirectionalLight | ConstantEnvironment | EnvironmentMap
 EMITTER_TYPES = (PointLight, SpotLight, DirectionalLight, ConstantEnvironment, EnvironmentMap)
-#: The emitters at infinity (the bounding sphere of the scene sets their light subpaths' start).
-INFINITE = (DirectionalLight, ConstantEnvironment, EnvironmentMap)
+#: What rays leaving the scene see; a scene takes one, as in Mitsuba 3.
+ENVIRONMENTS = (ConstantEnvironment, EnvironmentMap)

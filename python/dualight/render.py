@@ -78,17 +78,9 @@ def _skipped(stats: dict[str, Any], skip: bool, scene: Scene, method: str) -> di
     if "skipped_mutations" in stats:
         out["mutations"] = list(stats["skipped_mutations"])
     bidirectional = method in ("bdpt", "pssmlt") or (method == "mmlt" and skip)
-    if bidirectional and not _hittable_emitter(scene):
+    if bidirectional and not scene._compile().has_hittable_emitter:
         out["strategies"] = ["s = 0: every emitter is a delta light (no path hits one)"]
     return out
-
-
-def _hittable_emitter(scene: Scene) -> bool:
-    """Whether a path can hit an emitter: an area light or an environment."""
-    from dualight.emitters import ConstantEnvironment, EnvironmentMap
-
-    environment = any(isinstance(e, ConstantEnvironment | EnvironmentMap) for e in scene.emitters)
-    return environment or any(m.is_emitter for m in scene.meshes)
 
 
 def _budget(

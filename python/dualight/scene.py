@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Literal, ParamSpec, TypeVar
 import numpy as np
 
 from dualight.emitters import EMITTER_TYPES as _EMITTER_TYPES
-from dualight.emitters import Emitter
+from dualight.emitters import ENVIRONMENTS, Emitter
 from dualight.materials import Diffuse, Material
 
 if TYPE_CHECKING:
@@ -425,11 +425,8 @@ class Scene:
                 f"ConstantEnvironment or EnvironmentMap, got {type(emitter).__name__} (area lights "
                 "are meshes with emission)"
             )
-        from dualight.emitters import ConstantEnvironment, EnvironmentMap
-
-        environments = ConstantEnvironment | EnvironmentMap
-        if isinstance(emitter, environments) and any(
-            isinstance(e, environments) for e in self._emitters
+        if isinstance(emitter, ENVIRONMENTS) and any(
+            isinstance(e, ENVIRONMENTS) for e in self._emitters
         ):
             raise ValueError(
                 "the scene has an environment already: a scene takes one (constant or envmap), "

@@ -108,6 +108,9 @@ void bind_geometry(py::module_& m) {
            "(BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter).")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
+      .def_property_readonly("has_hittable_emitter", &Scene::has_hittable_emitter,
+                             "Whether a path can hit an emitter (an area light or an environment); false "
+                             "when every emitter is a point, spot or directional light.")
       .def_property_readonly(
           "features",
           [](const Scene& s) {

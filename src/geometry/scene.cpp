@@ -95,12 +95,13 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     emitters_.push_back(std::move(e));
   }
   for (const Emitter& e : emitters_) {
-    if (is_infinite(e) && !is_delta_direction(e)) environment_.push_back(&e);
     hittable_emitter_ = hittable_emitter_ || !is_delta_light(e);
+    if (!is_infinite(e) || is_delta_direction(e)) continue;
+    // As Mitsuba 3 ("Only one environment emitter can be specified per scene"): the sky a ray
+    // escapes to is one emitter, whose density BDPT's vertex at infinity carries.
+    if (environment_ != nullptr) throw std::invalid_argument("a scene takes one environment (constant or envmap)");
+    environment_ = &e;
   }
-  // As Mitsuba 3 ("Only one environment emitter can be specified per scene"): the sky a ray
-  // escapes to is one emitter, whose density BDPT's vertex at infinity carries.
-  if (environment_.size() > 1) throw std::invalid_argument("a scene takes one environment (constant or envmap)");
   emitter_sampler_ = PowerEmitterSampler(emitters_);
   MaterialFeatures used;
   for (const uint32_t m : material_of_) {

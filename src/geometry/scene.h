@@ -98,9 +98,9 @@ class Scene {
     return i == kNoEmitter ? nullptr : &emitters_[i];
   }
   // The emitter at infinity that rays leaving the scene see (a constant or image environment; at
-  // most one, as in Mitsuba), a pointer into emitters(); empty in most scenes, which then look
+  // most one, as in Mitsuba), a pointer into emitters(); nullptr in most scenes, which then look
   // nothing up on a miss.
-  const std::vector<const Emitter*>& environment() const { return environment_; }
+  const Emitter* environment() const { return environment_; }
   // Whether a path can hit some emitter (an area light or an environment): false when every
   // emitter is a delta light (point, spot, directional), whose light only strategies that
   // sample the emitter find.
@@ -167,7 +167,7 @@ class Scene {
   static constexpr uint32_t kNoEmitter = 0xffffffffu;
   std::vector<Emitter> emitters_;           // one AreaEmitter per emissive triangle, in triangle order
   std::vector<uint32_t> emitter_of_prim_;   // index into emitters_, kNoEmitter for the others
-  std::vector<const Emitter*> environment_;  // into emitters_ (fixed after construction)
+  const Emitter* environment_ = nullptr;  // into emitters_ (fixed after construction)
   bool hittable_emitter_ = false;
   PowerEmitterSampler emitter_sampler_;
   Vec3 bounds_min_, bounds_max_;

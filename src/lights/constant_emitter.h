@@ -45,15 +45,7 @@ inline bool sample_Le_direction(const ConstantEmitter& e, float pdf_a, const Vec
 
 // A uniform direction on the sphere, to a point beyond the bounding sphere (the shadow ray's end).
 inline bool sample_Li(const ConstantEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
-  const float reach = reach_beyond(e.scene, ref);
-  s.wi = square_to_uniform_sphere(u);
-  s.p = ref + s.wi * reach;
-  s.n = Vec3(0.f);
-  s.dist2 = reach * reach;
-  s.pdf_w = pmf * kUniformSpherePdf;
-  s.Le = e.L;
-  s.prim = 0;
-  s.on_surface = false;
+  light_sample_at_infinity(e.scene, ref, square_to_uniform_sphere(u), pmf * kUniformSpherePdf, e.L, s);
   return true;
 }
 // Solid-angle density of sample_Li finding direction wi (an escaping ray's).

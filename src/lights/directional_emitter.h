@@ -58,15 +58,7 @@ inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, const 
 // Seen from `ref`: towards -w, to a point beyond the bounding sphere (the shadow ray's end);
 // pdf_w is the choice's probability, Le the irradiance.
 inline bool sample_Li(const DirectionalEmitter& e, float pmf, const Vec3& ref, Point2, LightSample& s) {
-  const float reach = reach_beyond(e.scene, ref);
-  s.wi = -e.frame.n;
-  s.p = ref + s.wi * reach;
-  s.n = Vec3(0.f);
-  s.dist2 = reach * reach;
-  s.pdf_w = pmf;
-  s.Le = e.E;
-  s.prim = 0;
-  s.on_surface = false;
+  light_sample_at_infinity(e.scene, ref, -e.frame.n, pmf, e.E, s);
   return true;
 }
 // No path finds one direction by chance.

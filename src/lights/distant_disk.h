@@ -40,4 +40,19 @@ inline bool ray_from_infinity(const BoundingSphere& s, const Vec3& towards_light
   return true;
 }
 
+// Next-event estimation towards unit direction wi at infinity from `ref` (inside the sphere):
+// the shadow ray ends beyond the sphere; pdf_w includes the emitter's choice.
+inline void light_sample_at_infinity(const BoundingSphere& s, const Vec3& ref, const Vec3& wi, float pdf_w,
+                                     const Color& Le, LightSample& ls) {
+  const float reach = reach_beyond(s, ref);
+  ls.wi = wi;
+  ls.p = ref + wi * reach;
+  ls.n = Vec3(0.f);
+  ls.dist2 = reach * reach;
+  ls.pdf_w = pdf_w;
+  ls.Le = Le;
+  ls.prim = 0;
+  ls.on_surface = false;
+}
+
 }  // namespace dualight

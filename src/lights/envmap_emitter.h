@@ -50,16 +50,9 @@ inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3&
 // A direction sampled by the map's luminance, to a point beyond the bounding sphere.
 inline bool sample_Li(const EnvmapEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
   float pdf = 0.f;
-  s.wi = e.map->sample(u, pdf);
+  const Vec3 wi = e.map->sample(u, pdf);
   if (!(pdf > 0.f)) return false;
-  const float reach = reach_beyond(e.scene, ref);
-  s.p = ref + s.wi * reach;
-  s.n = Vec3(0.f);
-  s.dist2 = reach * reach;
-  s.pdf_w = pmf * pdf;
-  s.Le = e.map->eval(s.wi);
-  s.prim = 0;
-  s.on_surface = false;
+  light_sample_at_infinity(e.scene, ref, wi, pmf * pdf, e.map->eval(wi), s);
   return true;
 }
 // Solid-angle density of sample_Li finding unit direction wi (an escaping ray's).

@@ -123,7 +123,7 @@ inline Vertex escape_vertex(const Scene& scene, const Vec3& d, const Color& beta
   v.n = d;
   v.ns = d;
   v.wo = -d;
-  v.emitter = scene.environment().front();
+  v.emitter = scene.environment();
   v.at_point = true;
   v.at_infinity = true;
   v.beta = beta;

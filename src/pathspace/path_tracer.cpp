@@ -27,19 +27,13 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
   return beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
 }
 
-// Radiance of the environment a ray along unit d escaped to, weighted against next-event
+// Radiance of the environment `env` a ray along unit d escaped to, weighted against next-event
 // estimation as emission_seen, times beta.
-inline Color environment_seen(const Scene& scene, const Vec3& d, const Color& beta, float prev_pdf_w,
-                              bool prev_delta) {
-  Color L(0.f);
-  for (const Emitter* e : scene.environment()) {
-    const Color Le = radiance(*e, -d);
-    if (is_black(Le)) continue;
-    const float weight =
-        prev_delta ? 1.f : power_heuristic(prev_pdf_w, pdf_Li(*e, scene.emitter_pmf(*e), d, 0.f, 1.f));
-    L += Le * weight;
-  }
-  return beta * L;
+inline Color environment_seen(const Scene& scene, const Emitter& env, const Vec3& d, const Color& beta,
+                              float prev_pdf_w, bool prev_delta) {
+  const Color Le = radiance(env, -d);
+  if (is_black(Le) || prev_delta) return beta * Le;
+  return beta * (Le * power_heuristic(prev_pdf_w, pdf_Li(env, scene.emitter_pmf(env), d, 0.f, 1.f)));
 }
 
 // Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
@@ -81,7 +75,9 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     SurfaceHit hit;
     ++counters.rays;
     if (!scene.intersect(ray, hit)) {
-      if (!scene.environment().empty()) L += environment_seen(scene, ray.d, beta, prev_pdf_w, prev_delta);
+      if (scene.environment() != nullptr) {
+        L += environment_seen(scene, *scene.environment(), ray.d, beta, prev_pdf_w, prev_delta);
+      }
       break;
     }
 

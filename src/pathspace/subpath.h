@@ -36,7 +36,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     SurfaceHit hit;
     ++counters.rays;
     if (!scene.intersect(ray, hit)) {
-      if (mode == TransportMode::Radiance && !scene.environment().empty()) {
+      if (mode == TransportMode::Radiance && scene.environment() != nullptr) {
         path.push_back(escape_vertex(scene, ray.d, beta, pdf_w));
       }
       return;

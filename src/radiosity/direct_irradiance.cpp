@@ -76,7 +76,7 @@ std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, 
   for (const Emitter& e : patches.emitters()) {
     if (is_delta_light(e)) points.push_back(&e);
   }
-  const Emitter* env = patches.environment().empty() ? nullptr : patches.environment().front();
+  const Emitter* env = patches.environment();
   const size_t n = patches.triangle_count();
   std::vector<Color> H(n, Color(0.f));
   control.total.store(n);
