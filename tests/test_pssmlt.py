@@ -125,7 +125,10 @@ NOT_B_NORMALISED = {"mlt_flat"}
 # PSSMLT without Kelemen's MIS (the flattened importance keeps its Cornell box run in make
 # test; test_stats_and_options checks the plain estimator's weights against Kelemen's) and
 # the caustic box's MMLT (50 s: 36 runs for its skew; the caustic box keeps PSSMLT and MLT,
-# MMLT the Cornell, door, glossy, coated and point-light boxes).
+# MMLT the Cornell, door, glossy, coated and point-light boxes), and the Cornell box's MMLT
+# under a time limit (37 s: its 12 renders of twice the budgeted runs' time; the same code
+# with a mutation budget stays, and test_stats_and_options checks that a time limit ends a
+# render).
 CASES = [("cornell", v) for v in VARIANTS] + [
     (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
 ]
@@ -134,6 +137,7 @@ LONG_CASES = {
     ("cornell", "pssmlt_plain"),
     ("door", "mlt_flat"),
     ("caustics", "mmlt"),
+    ("cornell", "mmlt_time"),
 }
 # Glossy, coated, smooth-shaded and textured materials, and point and spot lights (issue 20),
 # in the three Metropolis methods (path-space MLT refuses the coated box's smooth plastic
@@ -363,8 +367,10 @@ def test_stats_and_options() -> None:
     per_depth = m["mutations_per_depth"]
     assert sum(per_depth) == m["mutations"] and per_depth[:3] == [0, 0, 0]
     assert np.all(np.diff(per_depth[3:]) < 0) and per_depth[-1] > 0
-    assert _runs("mmlt_time")[0].stats["time_limited"] and not m["time_limited"]
+    assert not m["time_limited"]
     scene = scenes.cornell_box(resolution=(16, 16))
+    timed = dualight.render(scene, "mmlt", spp=None, time_limit=0.5, max_depth=5, progress=False)
+    assert timed.stats["time_limited"] and timed.stats["mutations"] > 0
     one = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=1, progress=False)
     two = dualight.render(scene, "pssmlt", mutations_per_pixel=4, seed=3, threads=2, progress=False)
     np.testing.assert_array_equal(np.asarray(one), np.asarray(two))
