@@ -170,6 +170,16 @@ CASES = {
         {"path": 512, "light": 512, "bdpt": 256},
         {"light": BLOCKS},
     ),
+    # Issue 20's textured area light: the classic box's ceiling light emits a bitmap, warm at
+    # one end and cool at the other in a checker of bright and dim texels (Mitsuba's `area`
+    # emitter with a `radiance` texture). Control: the texture moved by half its width along
+    # u, its warm and cool ends swapped (the same power).
+    "lamp": Case(
+        "lamp_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="lamp", **kw),
+        {"texture_shift": 0.5},
+        {"path": 512, "light": 512, "bdpt": 128},
+    ),
 }
 RUNS = [(name, method) for name, case in sorted(CASES.items()) for method in case.spp]
 

@@ -57,6 +57,7 @@ SCENES = {
     "sun": functools.partial(scenes.cornell_box, variant="sun"),
     "sky": functools.partial(scenes.cornell_box, variant="sky"),
     "envmap": functools.partial(scenes.cornell_box, variant="envmap"),
+    "lamp": functools.partial(scenes.cornell_box, variant="lamp"),
 }
 
 
@@ -103,6 +104,7 @@ CONTROL_MATERIAL = {
     "sun": (("light_scale", 0.95),),
     "sky": (("light_scale", 0.95),),
     "envmap": (("env_rotation", 30.0),),
+    "lamp": (("texture_shift", 0.5),),
 }
 
 # A known defect (issue 18, found with the independent random streams): under a time limit
@@ -139,16 +141,18 @@ LONG_CASES = {
     ("caustics", "mmlt"),
     ("cornell", "mmlt_time"),
 }
-# Glossy, coated, smooth-shaded and textured materials, and point and spot lights (issue 20),
-# in the three Metropolis methods (path-space MLT refuses the coated box's smooth plastic
-# floor: its Dirac coat over a diffuse base); block tests only. make test keeps one or two
-# methods per scene and `long` marks the rest (make test-long), which run the same code as
-# those kept: PSSMLT and MMLT share BDPT's subpaths and connections.
+# Glossy, coated, smooth-shaded and textured materials, and point, spot and textured area
+# lights and emitters at infinity (issue 20), in the three Metropolis methods (path-space MLT
+# refuses the coated box's smooth plastic floor: its Dirac coat over a diffuse base); block
+# tests only. make test keeps one or two methods per scene and `long` marks the rest
+# (make test-long), which run the same code as those kept: PSSMLT and MMLT share BDPT's
+# subpaths and connections.
 MATERIAL_CASES = [
     ("glossy", "mmlt"),
     ("glossy", "mlt"),
     ("coated", "mmlt"),
     ("textured", "mlt"),
+    ("lamp", "mlt"),
     ("glossy", "pssmlt"),
     ("coated", "pssmlt"),
     ("smooth", "pssmlt"),
@@ -171,12 +175,17 @@ MATERIAL_CASES = [
     ("envmap", "mlt"),
     ("sun", "mlt"),
     ("sky", "mlt"),
+    ("lamp", "pssmlt"),
+    ("lamp", "mmlt"),
 ]
 # Emitters at infinity (issue 20): the open-top box under a sun, a sky and an environment map,
 # all long for make test's time (its path, light and BDPT comparisons with Mitsuba and
 # test_mlt_mutations' chains under the map stay in make test), as is the point-lit box's MMLT
-# (15 s; make test ran 14:41 and 15:04 with it; its BDPT and light tracer stay).
-LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:])
+# (15 s; make test ran 14:41 and 15:04 with it; its BDPT and light tracer stay). The textured
+# area light keeps path-space MLT (its bidirectional mutation starts light subpaths at the
+# lamp's texture), PSSMLT and MMLT long (they run BDPT's subpaths and connections, which
+# test_pathspace_vs_mitsuba.py checks on the lamp).
+LONG_MATERIAL_CASES = set(MATERIAL_CASES[5:])
 
 
 def _params(cases: list[tuple[str, str]], long: set[tuple[str, str]]) -> list:

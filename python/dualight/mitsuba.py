@@ -169,10 +169,6 @@ def _ensure_variant(name: str | None) -> str:
 # Scene conversion
 
 
-def _rgb(value: Sequence[float]) -> dict[str, Any]:
-    return {"type": "rgb", "value": [float(c) for c in value]}
-
-
 def _bsdf(material: Material, name: str) -> dict[str, Any]:
     """The Mitsuba BSDF dict matching a dualight material (see :func:`scene_dict`)."""
     if not isinstance(material, Material):
@@ -210,7 +206,7 @@ def _mesh(mesh: Any, key: str) -> Any:
     props["face_normals"] = not smooth
     props["bsdf"] = mi.load_dict(_bsdf(mesh.material, mesh.name))
     if mesh.is_emitter:
-        props["emitter"] = mi.load_dict({"type": "area", "radiance": _rgb(mesh.emission)})
+        props["emitter"] = mi.load_dict(_mitsuba_objects(mesh._mitsuba_emitter()))
     textured = mesh.uv is not None
     out = mi.Mesh(
         key,

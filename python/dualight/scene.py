@@ -32,6 +32,7 @@ import numpy as np
 from dualight.emitters import EMITTER_TYPES as _EMITTER_TYPES
 from dualight.emitters import ENVIRONMENTS, Emitter
 from dualight.materials import Diffuse, Material
+from dualight.textures import Texture, check_texture_range
 
 if TYPE_CHECKING:
     from dualight import _core
@@ -168,7 +169,7 @@ class Mesh:
         of a :class:`~dualight.Mirror`, ``(1, 1, 1)`` for a :class:`~dualight.Dielectric`; a
         texture's mean where the material is textured.
     emission : tuple of 3 float
-        Radiance leaving the front side.
+        Radiance leaving the front side; a texture's mean where ``emission_texture`` is given.
     name : str
     areas : numpy.ndarray
         ``(T,)`` float64 triangle areas.
@@ -178,6 +179,10 @@ class Mesh:
         ``(V, 3)`` unit shading normals (smooth shading), or ``None`` for flat triangles.
     uv : numpy.ndarray or None
         ``(V, 2)`` surface coordinates for textures, or ``None`` (each triangle's barycentrics).
+    emission_texture : Bitmap, Checkerboard or None
+        The radiance leaving each point of the front side, looked up at its ``(u, v)``
+        (Mitsuba's ``area`` emitter with a ``radiance`` texture), or ``None``: ``emission``
+        everywhere.
     """
 
     vertices: np.ndarray  # (V, 3) float64
@@ -189,6 +194,7 @@ class Mesh:
     material: Material = None  # type: ignore[assignment]  # None: Diffuse(reflectance)
     normals: np.ndarray | None = field(default=None, repr=False)  # (V, 3) float64, unit
     uv: np.ndarray | None = field(default=None, repr=False)  # (V, 2) float64
+    emission_texture: Texture | None = None
 
     def __post_init__(self) -> None:
         if self.material is None:
@@ -207,6 +213,16 @@ class Mesh:
     def is_emitter(self) -> bool:
         """Whether the mesh emits (some emission channel > 0)."""
         return any(e > 0.0 for e in self.emission)
+
+    def _mitsuba_emitter(self) -> dict[str, Any]:
+        """Its Mitsuba 3 ``area`` emitter as a plain plugin dict (textures as
+        :meth:`dualight.textures.Texture._mitsuba_dict` gives them)."""
+        radiance = (
+            {"type": "rgb", "value": [float(c) for c in self.emission]}
+            if self.emission_texture is None
+            else self.emission_texture._mitsuba_dict()
+        )
+        return {"type": "area", "radiance": radiance}
 
 
 def _triangulate(faces: Any, n_vertices: int, name: str) -> np.ndarray:
@@ -476,7 +492,7 @@ class Scene:
         vertices: Any,
         faces: Any,
         reflectance: Sequence[float] = _DEFAULT_REFLECTANCE,
-        emission: Sequence[float] = (0.0, 0.0, 0.0),
+        emission: Sequence[float] | Texture = (0.0, 0.0, 0.0),
         *,
         material: Material | None = None,
         name: str | None = None,
@@ -497,7 +513,13 @@ class Scene:
             Diffuse albedo per RGB channel, each in ``[0, 1]``: shorthand for
             ``material=Diffuse(reflectance)``. Leave it at its default when giving ``material``.
         emission:
-            Radiance (W m^-2 sr^-1) leaving the front side (the right-hand-rule normal), ``>= 0``.
+            Radiance (W m^-2 sr^-1) leaving the front side (the right-hand-rule normal), ``>= 0``:
+            three numbers, or a :class:`~dualight.textures.Bitmap` or
+            :class:`~dualight.textures.Checkerboard` of radiance looked up at each point's
+            ``(u, v)`` (Mitsuba's ``area`` emitter with a ``radiance`` texture; values
+            ``>= 0`` and at most 1e12, not all 0). Every estimator samples a textured light's
+            triangles in proportion to their texture's mean over them and points uniformly
+            on each (as Mitsuba); radiosity takes each patch's mean.
         material:
             A :class:`~dualight.Diffuse`, :class:`~dualight.Mirror` or
             :class:`~dualight.Dielectric` (whose exterior is on the normals' side). ``None``
@@ -568,6 +590,12 @@ class Scene:
                 "(a material carries its own reflectance)"
             )
         rho = material.rgb_reflectance
+        emission_texture = emission if isinstance(emission, Texture) else None
+        if emission_texture is not None:
+            check_texture_range(emission_texture, f"{name}:", "emission", 0.0, EMISSION_LIMIT)
+            if not max(emission_texture.mean) > 0.0:
+                raise ValueError(f"{name}: the emission texture is black (every value 0)")
+            emission = emission_texture.mean
         Le = _colour(emission, f"{name}: emission", upper=None)
 
         # Areas in float32, as the renderer will see the triangles.
@@ -592,7 +620,9 @@ class Scene:
                 arr.flags.writeable = False
         with self._lock:
             self._refuse_while_in_use("add_mesh")
-            self._meshes.append(Mesh(v, tris, rho, Le, name, areas, material, ns, uvs))
+            self._meshes.append(
+                Mesh(v, tris, rho, Le, name, areas, material, ns, uvs, emission_texture)
+            )
             self._compiled = None
             self._checked_facing = set()
             return len(self._meshes) - 1
@@ -705,6 +735,7 @@ class Scene:
                 uvs=self._vertex_uvs(),
                 textures=self._material_textures(),
                 emitters=[e._core_emitter() for e in self._emitters] or None,
+                emission_textures=self._emission_textures(),
             )
         return self._compiled
 
@@ -730,6 +761,15 @@ class Scene:
         """Per mesh, its material's ``(parameter, core texture)`` pairs, or None if none has any."""
         textures = [m.material._textures() for m in self._meshes]
         return textures if any(textures) else None
+
+    def _emission_textures(self) -> list[Any] | None:
+        """Per mesh, its core emission texture or None; None if no mesh has one."""
+        if all(m.emission_texture is None for m in self._meshes):
+            return None
+        return [
+            None if m.emission_texture is None else m.emission_texture._core_texture()
+            for m in self._meshes
+        ]
 
     def triangle_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """All meshes as one triangle list, in the compiled scene's order: positions ``(V, 3)``,

@@ -134,6 +134,7 @@ CORNELL_VARIANTS = (
     "sun",
     "sky",
     "envmap",
+    "lamp",
 )
 _OPEN_TOP = ("sun", "sky", "envmap")
 # The open-top variants' lights: a sun 28 degrees from the zenith, leaning towards the green
@@ -219,7 +220,10 @@ def cornell_box(
         :class:`~dualight.DirectionalLight` (irradiance (3, 2.8, 2.4) W/m^2, travelling along
         (-0.35, -1, 0.35)), a :class:`~dualight.ConstantEnvironment` (radiance (0.6, 0.75, 1))
         or an :class:`~dualight.EnvironmentMap` of :func:`cornell_sky_image` (a sky with a sun
-        in it), each times ``light_scale``.
+        in it), each times ``light_scale``. ``"lamp"``: the classic box whose ceiling light's
+        radiance is a texture (Mitsuba's ``area`` emitter with a ``bitmap`` ``radiance``,
+        :func:`cornell_lamp_texels`): warm at one end, cool at the other, in a checker of
+        bright and dim texels, of the classic light's mean radiance times ``light_scale``.
     ior : float, optional
         The glass sphere's index of refraction (``"caustics"`` and ``"glossy"``; any value
         the material accepts).
@@ -230,8 +234,9 @@ def cornell_box(
         Whether the ``"smooth"`` variant's spheres carry their vertex normals; ``False``
         renders the same triangles flat (a negative control).
     texture_shift : float, optional
-        Moves every texture of the ``"textured"`` variant along ``u`` by this much (1/32:
-        half a texel of the back wall; a negative control), finite.
+        Moves every texture of the ``"textured"`` and ``"lamp"`` variants along ``u`` by this
+        much (1/32: half a texel of the back wall; 1/2 swaps the lamp's warm and cool ends; a
+        negative control), finite.
     spot_cutoff : float, optional
         The ``"spot"`` variant's cutoff angle in degrees, in (0, 90].
     env_rotation : float, optional
@@ -275,7 +280,7 @@ def cornell_box(
     if not 0.0 < float(spot_cutoff) <= 90.0:
         raise ValueError(f"cornell_box: spot_cutoff must be in (0, 90], got {spot_cutoff!r}")
     textures = _cornell_textures(float(texture_shift)) if variant == "textured" else {}
-    spheres = variant not in ("classic", "textured", "point", "spot", *_OPEN_TOP)
+    spheres = variant not in ("classic", "textured", "point", "spot", "lamp", *_OPEN_TOP)
     if variant == "glossy":
         a = float(roughness_scale)
         sphere_materials: tuple[Material, Material] = (
@@ -352,14 +357,19 @@ def cornell_box(
     light = _orient(np.array(_CORNELL_LIGHT), _CORNELL_ROOM_CENTRE, inward=True)
     v, f = _quads_mesh([light])
     point_lit = variant in ("point", "spot")
+    emission: tuple[float, ...] | Bitmap = (
+        (0.0, 0.0, 0.0) if point_lit else tuple(light_scale * c for c in CORNELL_LIGHT_RADIANCE)
+    )
+    if variant == "lamp":
+        move = [[1.0, 0.0, float(texture_shift)], [0.0, 1.0, 0.0]]
+        emission = Bitmap(data=light_scale * cornell_lamp_texels(), to_uv=move)
     scene.add_mesh(
         v,
         f,
         reflectance=CORNELL_LIGHT_REFLECTANCE,
-        emission=(0.0, 0.0, 0.0)
-        if point_lit
-        else tuple(light_scale * c for c in CORNELL_LIGHT_RADIANCE),
+        emission=emission,
         name="light",
+        uv=[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] if variant == "lamp" else None,
     )
     intensity = tuple(light_scale * c for c in _CORNELL_POINT_INTENSITY)
     if variant == "point":
@@ -376,6 +386,17 @@ def cornell_box(
             )
         )
     return scene
+
+
+def cornell_lamp_texels() -> np.ndarray:
+    """The ``"lamp"`` Cornell variant's radiance texture, ``(4, 8, 3)`` linear RGB: along ``u``
+    from warm (red x1.6, blue x0.4) to cool (red x0.4, blue x1.6), times 1.5 and 0.5 in a
+    checker of 2 x 1 texels, so its mean is the classic light's radiance."""
+    i, j = np.meshgrid(np.arange(4), np.arange(8), indexing="ij")
+    t = ((j + 0.5) / 8)[..., None]
+    warm_to_cool = np.concatenate([1.6 - 1.2 * t, np.ones_like(t), 0.4 + 1.2 * t], axis=2)
+    checker = (1.0 + 0.5 * (-1.0) ** (i + j // 2))[..., None]
+    return (np.asarray(CORNELL_LIGHT_RADIANCE) * warm_to_cool * checker).astype(np.float32)
 
 
 def cornell_sky_image(width: int = 64, height: int = 32) -> np.ndarray:

@@ -40,6 +40,16 @@ void add_textures(const std::vector<MaterialTextures>& textures, std::vector<Mat
   }
 }
 
+// Per material: its radiance texture or None.
+void add_emission_textures(const std::vector<std::optional<TextureObject>>& textures, std::vector<Material>& materials) {
+  if (textures.size() != materials.size()) {
+    throw py::value_error("emission_textures needs one entry per material (" + std::to_string(materials.size()) + ")");
+  }
+  for (size_t i = 0; i < materials.size(); ++i) {
+    if (textures[i]) materials[i].emission_texture = textures[i]->texture;
+  }
+}
+
 // One material per row of reflectance/emission. `kind` (BsdfKind values) and `ior` are optional
 // so that diffuse-only callers (radiosity patches) need not pass them.
 std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray& triangles,
@@ -49,7 +59,8 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                                   const std::optional<std::vector<BsdfObject>>& bsdfs,
                                   const std::optional<FloatArray>& normals, const std::optional<FloatArray>& uvs,
                                   const std::optional<std::vector<MaterialTextures>>& textures,
-                                  const std::optional<std::vector<EmitterObject>>& emitters) {
+                                  const std::optional<std::vector<EmitterObject>>& emitters,
+                                  const std::optional<std::vector<std::optional<TextureObject>>>& emission_textures) {
   std::vector<float> p = rows_of(positions, 3, "positions");
   std::vector<float> ns = normals ? rows_of(*normals, 3, "normals") : std::vector<float>{};
   if (normals && ns.size() != p.size()) throw py::value_error("normals needs one row per position");
@@ -81,6 +92,7 @@ std::shared_ptr<Scene> make_scene(const FloatArray& positions, const IndexArray&
                          Color(Le[3 * i], Le[3 * i + 1], Le[3 * i + 2])});
   }
   if (textures) add_textures(*textures, materials);
+  if (emission_textures) add_emission_textures(*emission_textures, materials);
   std::vector<Emitter> lights;
   if (emitters) {
     for (const EmitterObject& e : *emitters) lights.push_back(e.emitter);
@@ -99,13 +111,16 @@ void bind_geometry(py::module_& m) {
            py::arg("reflectance"), py::arg("emission"), py::kw_only(), py::arg("kind") = py::none(),
            py::arg("ior") = py::none(), py::arg("bsdfs") = py::none(), py::arg("normals") = py::none(),
            py::arg("uvs") = py::none(), py::arg("textures") = py::none(), py::arg("emitters") = py::none(),
+           py::arg("emission_textures") = py::none(),
            "Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one "
            "dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a "
            "dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse "
            "albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a "
            "triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface "
            "coordinates, one row per position (NaN for meshes without). textures: per material, a list of "
-           "(BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter).")
+           "(BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter). "
+           "emission_textures: per material, the Texture of its emitted radiance (an area light whose "
+           "radiance varies over its surface) or None.")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("emitter_count", &Scene::emitter_count)
       .def_property_readonly("has_hittable_emitter", &Scene::has_hittable_emitter,

@@ -25,6 +25,24 @@ std::pair<Vec3, float> Scene::normal_and_double_area(uint32_t prim) const {
           static_cast<float>(len)};
 }
 
+// The emitter on triangle `prim` (its normal and area known): its material's radiance, or its
+// radiance texture, whose mean over the triangle is then the emitter's power.
+AreaEmitter Scene::area_emitter(uint32_t prim) const {
+  const Material& m = material(prim);
+  AreaEmitter e{vertex(prim, 0), vertex(prim, 1), vertex(prim, 2), normal_[prim], area_[prim], prim, m.emission};
+  e.uv0 = surface_uv(prim, 0.f, 0.f);
+  e.uv1 = surface_uv(prim, 1.f, 0.f);
+  e.uv2 = surface_uv(prim, 0.f, 1.f);
+  if (m.emission_texture) {
+    e.texture = &*m.emission_texture;
+    e.Le = mean_rgb_over_triangle(*e.texture, e.uv0, e.uv1, e.uv2);
+    if (!(e.Le.x >= 0.f && e.Le.y >= 0.f && e.Le.z >= 0.f && std::isfinite(max_component(e.Le)))) {
+      throw std::invalid_argument("emission textures must be finite and >= 0");
+    }
+  }
+  return e;
+}
+
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
              std::vector<Material> materials, std::vector<Emitter> emitters, std::vector<float> normals,
              std::vector<float> uvs)
@@ -77,11 +95,9 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     }
     normal_[prim] = normal;
     area_[prim] = 0.5f * len;
-    const Color& Le = materials_[material_of_[prim]].emission;
-    if (!is_black(Le)) {
+    if (material(prim).emits()) {
       emitter_of_prim_[prim] = static_cast<uint32_t>(emitters_.size());
-      emitters_.push_back(AreaEmitter{vertex(prim, 0), vertex(prim, 1), vertex(prim, 2), normal_[prim], area_[prim],
-                                      prim, Le});
+      emitters_.push_back(area_emitter(prim));
     }
   }
   const size_t emitter_triangles = emitters_.size();

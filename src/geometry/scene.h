@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -17,16 +18,18 @@
 
 namespace dualight {
 
-// A triangle's description: its BSDF and, when non-black, the radiance it emits from its
-// front side (the side of the right-hand-rule normal), which makes it an AreaEmitter.
+// A triangle's description: its BSDF and, when non-black or textured, the radiance it emits
+// from its front side (the side of the right-hand-rule normal), which makes it an AreaEmitter.
 // `textures` drive some of the BSDF's parameters, looked up at each point's (u, v); `bsdf` holds
 // their means (what radiosity and the material's flags see).
 struct Material {
   Bsdf bsdf;
   Color emission;
   std::vector<TextureSlot> textures;
+  std::optional<Texture> emission_texture;  // the radiance at each point's (u, v); `emission` unused
 
   bool textured() const { return !textures.empty(); }
+  bool emits() const { return emission_texture.has_value() || !is_black(emission); }
   // The BSDF at surface coordinates uv.
   Bsdf bsdf_at(Point2 uv) const { return textured_bsdf(bsdf, textures, uv); }
 };
@@ -149,6 +152,7 @@ class Scene {
 
  private:
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
+  AreaEmitter area_emitter(uint32_t prim) const;
   void set_vertex_normals(const std::vector<float>& normals);
   void set_vertex_uvs(std::vector<float> uvs);
   Vec3 interpolated_normal(uint32_t prim, float u, float v) const;

@@ -31,7 +31,7 @@ inline double power(const ConstantEmitter& e) {
 }
 
 // Radiance travelling along w (from infinity into the scene): L.
-inline Color radiance(const ConstantEmitter& e, const Vec3&) { return e.L; }
+inline Color radiance(const ConstantEmitter& e, const Vec3&, Point2) { return e.L; }
 
 inline float pdf_Le_position(const ConstantEmitter&, float pmf, const Vec3& = {}) { return pmf * kUniformSpherePdf; }
 inline EmitterPoint sample_Le_position(const ConstantEmitter&, float pmf, Point2 u) {
@@ -39,7 +39,7 @@ inline EmitterPoint sample_Le_position(const ConstantEmitter&, float pmf, Point2
 }
 inline float pdf_Le_direction(const ConstantEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // From direction `at` (towards the emitter): a ray along -at from the distant disk.
-inline bool sample_Le_direction(const ConstantEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const ConstantEmitter& e, float pdf_a, const Vec3& at, Point2, Point2 u, EmitterDirection& d) {
   return ray_from_infinity(e.scene, at, e.L, pdf_a, u, d);
 }
 

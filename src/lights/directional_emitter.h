@@ -39,7 +39,7 @@ inline double power(const DirectionalEmitter& e) {
 }
 
 // What reaches a plane facing it per unit area: its irradiance (in the measure of its disk).
-inline Color radiance(const DirectionalEmitter& e, const Vec3&) { return e.E; }
+inline Color radiance(const DirectionalEmitter& e, const Vec3&, Point2) { return e.E; }
 
 // Light subpaths: its direction at infinity, with the choice's probability (a delta: the
 // position of a point at infinity [Veach 1997, sec. 8.1.1]), then a point on the distant disk
@@ -50,7 +50,7 @@ inline EmitterPoint sample_Le_position(const DirectionalEmitter& e, float pmf, P
 }
 inline float pdf_Le_direction(const DirectionalEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // beta = E / (pdf_a pdf_disk): the flux through the disk over the choice's probability.
-inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, const Vec3&, Point2 u,
+inline bool sample_Le_direction(const DirectionalEmitter& e, float pdf_a, const Vec3&, Point2, Point2 u,
                                 EmitterDirection& d) {
   return ray_from_infinity(e.scene, -e.frame.n, e.E, pdf_a, u, d);
 }

@@ -7,8 +7,9 @@
 // probability in.
 //
 // Conventions every member keeps: power() is flux / pi (the choice's weight; an area emitter's
-// area times mean radiance, a point's 4 times its mean intensity); radiance(e, w) is what leaves
-// the emitter's point towards w, in the measure its position density uses (a point emitter: its
+// area times mean radiance, a point's 4 times its mean intensity); radiance(e, w, uv) is what
+// leaves the emitter's point (of surface coordinates uv, which members without a surface
+// ignore) towards w, in the measure its position density uses (a point emitter: its
 // intensity, its position's density a discrete probability); a member without a surface samples
 // positions with on_surface = false and a zero normal, and paths never hit it. Members at
 // infinity (flag Infinite) learn the scene's bounding sphere from attach_scene; those whose
@@ -58,8 +59,8 @@ inline void attach_scene(Emitter& e, const BoundingSphere& s) {
 inline double power(const Emitter& e) {
   return with_emitter(e, [](const auto& x) { return power(x); });
 }
-inline Color radiance(const Emitter& e, const Vec3& w) {
-  return with_emitter(e, [&](const auto& x) { return radiance(x, w); });
+inline Color radiance(const Emitter& e, const Vec3& w, Point2 uv) {
+  return with_emitter(e, [&](const auto& x) { return radiance(x, w, uv); });
 }
 // The density of the emitter point (or direction at infinity) `at` as a light subpath's start.
 inline float pdf_Le_position(const Emitter& e, float pmf, const Vec3& at) {
@@ -71,9 +72,11 @@ inline EmitterPoint sample_Le_position(const Emitter& e, float pmf, Point2 u) {
 inline float pdf_Le_direction(const Emitter& e, const Vec3& w) {
   return with_emitter(e, [&](const auto& x) { return pdf_Le_direction(x, w); });
 }
-// A direction of emission from the emitter point `at` sampled with density pdf_a.
-inline bool sample_Le_direction(const Emitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
-  return with_emitter(e, [&](const auto& x) { return sample_Le_direction(x, pdf_a, at, u, d); });
+// A direction of emission from the emitter point `at` (surface coordinates uv) sampled with
+// density pdf_a.
+inline bool sample_Le_direction(const Emitter& e, float pdf_a, const Vec3& at, Point2 uv, Point2 u,
+                                EmitterDirection& d) {
+  return with_emitter(e, [&](const auto& x) { return sample_Le_direction(x, pdf_a, at, uv, u, d); });
 }
 inline bool sample_Li(const Emitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
   return with_emitter(e, [&](const auto& x) { return sample_Li(x, pmf, ref, u, s); });

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/sampling.h"
 #include "core/vec3.h"
 
 namespace dualight {
@@ -17,6 +18,7 @@ struct EmitterPoint {
   // A point on the sphere at infinity: p = n = the unit direction from the scene towards it,
   // pdf_a a solid-angle density (or a direction's discrete probability).
   bool at_infinity = false;
+  Point2 uv{0.f, 0.f};  // its surface coordinates (when on_surface)
 };
 // A direction of emission from an emitter point.
 struct EmitterDirection {

@@ -33,7 +33,7 @@ inline double power(const EnvmapEmitter& e) {
 }
 
 // Radiance travelling along w (from infinity into the scene): the map seen towards -w.
-inline Color radiance(const EnvmapEmitter& e, const Vec3& w) { return e.map->eval(-normalize(w)); }
+inline Color radiance(const EnvmapEmitter& e, const Vec3& w, Point2) { return e.map->eval(-normalize(w)); }
 
 inline float pdf_Le_position(const EnvmapEmitter& e, float pmf, const Vec3& at) { return pmf * e.map->pdf(at); }
 inline EmitterPoint sample_Le_position(const EnvmapEmitter& e, float pmf, Point2 u) {
@@ -43,7 +43,7 @@ inline EmitterPoint sample_Le_position(const EnvmapEmitter& e, float pmf, Point2
 }
 inline float pdf_Le_direction(const EnvmapEmitter& e, const Vec3&) { return distant_disk_pdf(e.scene); }
 // From direction `at` (towards the emitter): a ray along -at from the distant disk.
-inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3& at, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3& at, Point2, Point2 u, EmitterDirection& d) {
   return ray_from_infinity(e.scene, at, e.map->eval(at), pdf_a, u, d);
 }
 

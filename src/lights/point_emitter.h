@@ -24,7 +24,7 @@ constexpr EmitterFlags flags(const PointEmitter&) { return EmitterFlags::DeltaPo
 inline double power(const PointEmitter& e) { return 4.0 * average(e.I); }
 
 // What leaves the point towards w: its intensity.
-inline Color radiance(const PointEmitter& e, const Vec3&) { return e.I; }
+inline Color radiance(const PointEmitter& e, const Vec3&, Point2) { return e.I; }
 
 inline float pdf_Le_position(const PointEmitter&, float pmf, const Vec3& = {}) { return pmf; }
 inline EmitterPoint sample_Le_position(const PointEmitter& e, float pmf, Point2) {
@@ -32,7 +32,7 @@ inline EmitterPoint sample_Le_position(const PointEmitter& e, float pmf, Point2)
 }
 
 inline float pdf_Le_direction(const PointEmitter&, const Vec3&) { return kUniformSpherePdf; }
-inline bool sample_Le_direction(const PointEmitter& e, float pdf_a, const Vec3&, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const PointEmitter& e, float pdf_a, const Vec3&, Point2, Point2 u, EmitterDirection& d) {
   d.w = square_to_uniform_sphere(u);
   d.pdf_w = kUniformSpherePdf;
   d.beta = e.I / (pdf_a * kUniformSpherePdf);  // no cosine at a point

@@ -38,7 +38,7 @@ inline float spot_falloff(const SpotEmitter& e, const Vec3& w) {
 // flux / pi, bounded above by the full cone's: 2 (1 - cos cutoff) I (a selection weight only).
 inline double power(const SpotEmitter& e) { return 2.0 * (1.0 - double(e.cos_cutoff)) * average(e.I); }
 
-inline Color radiance(const SpotEmitter& e, const Vec3& w) { return e.I * spot_falloff(e, w); }
+inline Color radiance(const SpotEmitter& e, const Vec3& w, Point2) { return e.I * spot_falloff(e, w); }
 
 inline float pdf_Le_position(const SpotEmitter&, float pmf, const Vec3& = {}) { return pmf; }
 inline EmitterPoint sample_Le_position(const SpotEmitter& e, float pmf, Point2) {
@@ -48,10 +48,10 @@ inline EmitterPoint sample_Le_position(const SpotEmitter& e, float pmf, Point2) 
 inline float pdf_Le_direction(const SpotEmitter& e, const Vec3& w) {
   return dot(w, e.frame.n) > e.cos_cutoff ? uniform_cone_pdf(e.cos_cutoff) : 0.f;
 }
-inline bool sample_Le_direction(const SpotEmitter& e, float pdf_a, const Vec3&, Point2 u, EmitterDirection& d) {
+inline bool sample_Le_direction(const SpotEmitter& e, float pdf_a, const Vec3&, Point2, Point2 u, EmitterDirection& d) {
   d.w = e.frame.to_world(square_to_uniform_cone(u, e.cos_cutoff));
   d.pdf_w = uniform_cone_pdf(e.cos_cutoff);
-  d.beta = radiance(e, d.w) / (pdf_a * d.pdf_w);
+  d.beta = radiance(e, d.w, {}) / (pdf_a * d.pdf_w);
   return !is_black(d.beta);
 }
 
@@ -60,7 +60,7 @@ inline bool sample_Li(const SpotEmitter& e, float pmf, const Vec3& ref, Point2, 
   s.dist2 = dot(to_light, to_light);
   if (!(s.dist2 > 0.f)) return false;
   s.wi = to_light / std::sqrt(s.dist2);
-  s.Le = radiance(e, -s.wi) / s.dist2;
+  s.Le = radiance(e, -s.wi, {}) / s.dist2;
   if (is_black(s.Le)) return false;
   s.p = e.p;
   s.n = Vec3(0.f);

@@ -2,6 +2,7 @@
 // wrapping, checkerboard); see texture.h.
 #include "materials/texture.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dualight {
@@ -63,6 +64,21 @@ bool checker_first(const CheckerboardTexture& c, Point2 uv_in) {
   return mu == mv;
 }
 
+// The texture's features per unit of its own (u, v): texels, or a checkerboard's two squares.
+float features_per_unit(const Texture& t) {
+  if (const auto* b = std::get_if<BitmapTexture>(&t)) return static_cast<float>(std::max(b->texels->width, b->texels->height));
+  return 2.f;
+}
+
+float uv_span(const UvTransform& m, Point2 a, Point2 b) {
+  const Point2 p = m(a), q = m(b);
+  return std::hypot(p.u - q.u, p.v - q.v);
+}
+
+const UvTransform& to_uv_of(const Texture& t) {
+  return std::visit([](const auto& x) -> const UvTransform& { return x.to_uv; }, t);
+}
+
 }  // namespace
 
 Color eval_rgb(const Texture& t, Point2 uv) {
@@ -91,6 +107,29 @@ Color mean_rgb(const Texture& t) {
     for (int k = 0; k < 3; ++k) sum[k] += x.values[i * x.channels + (x.channels == 1 ? 0 : k)];
   }
   return Color(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n));
+}
+
+Color mean_rgb_over_triangle(const Texture& t, Point2 a, Point2 b, Point2 c) {
+  const UvTransform& m = to_uv_of(t);
+  const float span = std::max({uv_span(m, a, b), uv_span(m, b, c), uv_span(m, c, a)});
+  const float wanted = 4.f * span * features_per_unit(t);
+  const int n = std::isfinite(wanted) ? std::clamp(static_cast<int>(std::ceil(wanted)), 2, 64) : 64;
+  // Barycentrics (i + 1/3, j + 1/3) / n and (i + 2/3, j + 2/3) / n: the centroids of the upright
+  // and the inverted small triangles, n^2 of equal area.
+  double sum[3] = {0.0, 0.0, 0.0};
+  const auto add = [&](float s, float r) {
+    const Point2 uv{a.u + s * (b.u - a.u) + r * (c.u - a.u), a.v + s * (b.v - a.v) + r * (c.v - a.v)};
+    const Color x = eval_rgb(t, uv);
+    for (int k = 0; k < 3; ++k) sum[k] += x[k];
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; i + j < n; ++j) {
+      add((i + 1.f / 3.f) / n, (j + 1.f / 3.f) / n);
+      if (i + j + 1 < n) add((i + 2.f / 3.f) / n, (j + 2.f / 3.f) / n);
+    }
+  }
+  const double count = static_cast<double>(n) * n;
+  return Color(static_cast<float>(sum[0] / count), static_cast<float>(sum[1] / count), static_cast<float>(sum[2] / count));
 }
 
 }  // namespace dualight

@@ -58,5 +58,9 @@ float eval_scalar(const Texture& t, Point2 uv);
 // The mean over the unit square of uv (before to_uv for the checkerboard, as Mitsuba: the mean
 // of its two colours; a bitmap's mean texel).
 Color mean_rgb(const Texture& t);
+// The mean of eval_rgb over the triangle of surface coordinates (a, b, c): the midpoint rule on
+// its split into n x n similar triangles, n from the triangle's size in texels (or checkerboard
+// squares), about four points per texel along each side, 2 <= n <= 64.
+Color mean_rgb_over_triangle(const Texture& t, Point2 a, Point2 b, Point2 c);
 
 }  // namespace dualight

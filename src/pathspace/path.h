@@ -105,6 +105,7 @@ inline Vertex emitter_vertex(const Scene& scene, float u_select, Point2 u) {
   v.n = y.n;
   v.ns = y.n;
   v.prim = y.prim;
+  v.uv = y.uv;
   v.material = y.on_surface ? &scene.material(v.prim) : nullptr;
   v.emitter = choice.emitter;
   v.at_point = !y.on_surface;
@@ -162,7 +163,7 @@ inline float abs_cos(const Vertex& v, const Vec3& w) { return v.on_surface() ? s
 // Radiance vertex v emits towards `to` (0 when v is on no emitter); from infinity, along -v.n.
 inline Color emitted_towards(const Vertex& v, const Vec3& to) {
   if (v.emitter == nullptr) return Color(0.f);
-  return radiance(*v.emitter, v.at_infinity ? -v.n : to - v.p);
+  return radiance(*v.emitter, v.at_infinity ? -v.n : to - v.p, v.uv);
 }
 
 // Solid-angle density of v's emitter emitting towards unit w (0 when v is on no emitter).

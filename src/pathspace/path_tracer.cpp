@@ -19,7 +19,7 @@ namespace {
 inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3& wo_world, const Color& beta,
                            float prev_pdf_w, bool prev_delta) {
   const Emitter& e = *hit.emitter;
-  const Color Le = radiance(e, wo_world);
+  const Color Le = radiance(e, wo_world, hit.uv);
   if (is_black(Le)) return Color(0.f);
   if (prev_delta) return beta * Le;
   const float cos_light = std::abs(dot(hit.n, wo_world));
@@ -31,7 +31,7 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
 // estimation as emission_seen, times beta.
 inline Color environment_seen(const Scene& scene, const Emitter& env, const Vec3& d, const Color& beta,
                               float prev_pdf_w, bool prev_delta) {
-  const Color Le = radiance(env, -d);
+  const Color Le = radiance(env, -d, {});
   if (is_black(Le) || prev_delta) return beta * Le;
   return beta * (Le * power_heuristic(prev_pdf_w, pdf_Li(env, scene.emitter_pmf(env), d, 0.f, 1.f)));
 }

@@ -117,7 +117,7 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   path.push_back(emitter_vertex(scene, u_select, sampler.next_2d()));
   const Vertex& y0 = path.back();
   EmitterDirection d;
-  if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, y0.p, sampler.next_2d(), d)) return;
+  if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, y0.p, y0.uv, sampler.next_2d(), d)) return;
   const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : (y0.at_infinity ? d.origin : y0.p);
   subpath_detail::random_walk(scene, Ray{origin, d.w}, sampler, d.beta, d.pdf_w,
                               max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);

@@ -51,7 +51,7 @@ Color environment_irradiance(const Scene& scene, const Emitter& env, const Vec3&
     const float cos_theta = dot(n, w);
     if (!(cos_theta > 0.f)) return Color(0.f);
     const float pdf = cos_theta * kInvPi + pdf_Li(env, 1.f, w, 0.f, 1.f);
-    const Color L = radiance(env, -w) * (cos_theta / pdf);
+    const Color L = radiance(env, -w, {}) * (cos_theta / pdf);
     if (is_black(L) || !scene.visible_point(p, n, scene.beyond(p, w))) return Color(0.f);
     return L;
   };

@@ -58,8 +58,9 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     e.area = scene.area(t);
     e.root = t;
     const Color rho = albedo.empty() ? diffuse_reflectance(scene.material(t).bsdf) : albedo[t];
+    // A triangle's emitter is an AreaEmitter; its Le the mean over the triangle where textured.
     const Emitter* emitter = scene.emitter_at(t);
-    const Color Le = emitter != nullptr ? radiance(*emitter, e.normal) : Color(0.f);
+    const Color Le = emitter != nullptr ? std::get<AreaEmitter>(*emitter).Le : Color(0.f);
     for (int c = 0; c < 3; ++c) {
       e.rho[c] = rho[c];
       e.E[c] = kPi * Le[c];  // emitted radiosity

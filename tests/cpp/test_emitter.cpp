@@ -28,8 +28,8 @@ TEST_CASE("area_emitter_reports_a_surface_not_a_delta") {
   const Emitter e = triangle_emitter(Color(1.f));
   CHECK(flags(e) == EmitterFlags::Surface);
   CHECK((!is_delta_position(e) && !is_delta_direction(e)));
-  CHECK(!is_black(radiance(e, Vec3(0.1f, 0.f, 1.f))));
-  CHECK(is_black(radiance(e, Vec3(0.1f, 0.f, -1.f))));  // one-sided
+  CHECK(!is_black(radiance(e, Vec3(0.1f, 0.f, 1.f), {})));
+  CHECK(is_black(radiance(e, Vec3(0.1f, 0.f, -1.f), {})));  // one-sided
   CHECK_NEAR(power(e), 0.5, 1e-9);
 }
 
@@ -48,13 +48,44 @@ TEST_CASE("area_emitter_densities_agree") {
     CHECK(y.pdf_a == pdf_Le_position(e, pmf, y.p));
     CHECK_NEAR(y.pdf_a, pmf / 2.f, 1e-7f);  // area 2
     EmitterDirection d;
-    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, u, d));
+    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, y.uv, u, d));
     CHECK(d.pdf_w == pdf_Le_direction(e, d.w));
     // beta = Le |cos| / (pdf_a pdf_w).
     CHECK_NEAR(d.beta.x / (2.f * d.w.z / (y.pdf_a * d.pdf_w)), 1.f, 1e-5f);
   }
   LightSample behind;
   CHECK(!sample_Li(e, pmf, Vec3(0.3f, 0.4f, -1.f), {0.5f, 0.5f}, behind));  // faces away
+}
+
+// Mitsuba's `area` emitter with a `radiance` texture: every point emits the texture at its
+// surface coordinates (here the barycentrics of corners 1 and 2, as the triangle has no uvs:
+// the point's x and y); the emitter's power is the texture's mean over the triangle.
+TEST_CASE("textured_area_emitter_emits_its_texture_at_each_point") {
+  Material lamp{Lambertian{Color(0.f)}, Color(0.f)};
+  const CheckerboardTexture checker{Color(2.f, 4.f, 6.f), Color(0.f), {}};
+  lamp.emission_texture = Texture{checker};
+  const Scene scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {0}, {lamp});
+  REQUIRE(scene.emitter_count() == 1);
+  const Emitter& e = scene.emitters()[0];
+  // colour0 covers the square [0, 1/2)^2, half of the triangle u + v < 1.
+  CHECK_NEAR(power(e), 0.5 * 0.5 * 4.0, 0.03 * 4.0 * 0.25);
+  CHECK_NEAR(std::get<AreaEmitter>(e).Le.y, 2.f, 0.06f);
+  for (const Point2 u : {Point2{0.1f, 0.2f}, Point2{0.7f, 0.9f}, Point2{0.5f, 0.05f}, Point2{0.95f, 0.3f}}) {
+    const EmitterPoint y = sample_Le_position(e, 1.f, u);
+    CHECK_NEAR(y.uv.u, y.p.x, 1e-6f);
+    CHECK_NEAR(y.uv.v, y.p.y, 1e-6f);
+    const Color expected = eval_rgb(lamp.emission_texture.value(), y.uv);
+    CHECK(radiance(e, Vec3(0.f, 0.f, 1.f), y.uv).y == expected.y);
+    EmitterDirection d;
+    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, y.uv, u, d));
+    CHECK_NEAR(d.beta.y, expected.y * kPi / y.pdf_a, 1e-5f);
+    LightSample ls;
+    REQUIRE(sample_Li(e, 1.f, Vec3(0.3f, 0.3f, 1.f), u, ls));
+    CHECK(ls.Le.y == eval_rgb(lamp.emission_texture.value(), {ls.p.x, ls.p.y}).y);
+    SurfaceHit hit;  // the texture seen by a ray at the same point
+    REQUIRE(scene.intersect(Ray{Vec3(y.p.x, y.p.y, 1.f), Vec3(0.f, 0.f, -1.f)}, hit));
+    CHECK(radiance(e, Vec3(0.f, 0.f, 1.f), hit.uv).y == expected.y);
+  }
 }
 
 TEST_CASE("power_sampler_chooses_in_proportion_to_power") {
@@ -103,7 +134,7 @@ TEST_CASE("point_emitter_is_a_delta_position_with_intensity_over_r2") {
   // Light subpaths leave uniformly: beta = I / (pmf / (4 pi)), every direction.
   for (const Point2 u : {Point2{0.1f, 0.2f}, Point2{0.7f, 0.9f}, Point2{0.5f, 0.5f}}) {
     EmitterDirection d;
-    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, u, d));
+    REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, y.uv, u, d));
     CHECK_NEAR(length(d.w), 1.f, 1e-5f);
     CHECK(d.pdf_w == pdf_Le_direction(e, d.w));
     CHECK_NEAR(d.beta.x, 4.f * 4.f * kPi / 0.5f, 1e-3f);
@@ -118,23 +149,23 @@ TEST_CASE("spot_emitter_falls_off_as_mitsuba_and_samples_its_cone") {
   const auto towards = [](float degrees) {
     return Vec3(std::sin(degrees * kDeg), 0.f, -std::cos(degrees * kDeg));
   };
-  CHECK(radiance(e, towards(0.f)).x == 3.f);
-  CHECK(radiance(e, towards(29.f)).x == 3.f);                      // inside the beam
-  CHECK_NEAR(radiance(e, towards(35.f)).x, 1.5f, 1e-3f);           // half way, linear in angle
-  CHECK(is_black(radiance(e, towards(41.f))));                     // beyond the cutoff
-  CHECK(is_black(radiance(e, Vec3(0.f, 0.f, 1.f))));              // behind
+  CHECK(radiance(e, towards(0.f), {}).x == 3.f);
+  CHECK(radiance(e, towards(29.f), {}).x == 3.f);                      // inside the beam
+  CHECK_NEAR(radiance(e, towards(35.f), {}).x, 1.5f, 1e-3f);           // half way, linear in angle
+  CHECK(is_black(radiance(e, towards(41.f), {})));                     // beyond the cutoff
+  CHECK(is_black(radiance(e, Vec3(0.f, 0.f, 1.f), {})));              // behind
   // Uniform in the cone: every sample inside it, density 1 / (2 pi (1 - cos 40)).
   const float expected_pdf = 1.f / (2.f * kPi * (1.f - std::cos(40.f * kDeg)));
   int n = 0;
   for (int i = 0; i < 64; ++i) {
     const Point2 u{(i % 8 + 0.5f) / 8.f, (i / 8 + 0.5f) / 8.f};
     EmitterDirection d;
-    if (!sample_Le_direction(e, 1.f, Vec3(0.f), u, d)) continue;
+    if (!sample_Le_direction(e, 1.f, Vec3(0.f), {}, u, d)) continue;
     ++n;
     CHECK(-d.w.z > std::cos(40.f * kDeg) - 1e-5f);
     CHECK_NEAR(d.pdf_w, expected_pdf, 1e-4f * expected_pdf);
     CHECK(d.pdf_w == pdf_Le_direction(e, d.w));
-    CHECK_NEAR(d.beta.x, radiance(e, d.w).x / d.pdf_w, 1e-4f * d.beta.x + 1e-6f);
+    CHECK_NEAR(d.beta.x, radiance(e, d.w, {}).x / d.pdf_w, 1e-4f * d.beta.x + 1e-6f);
   }
   CHECK(n >= 60);
   LightSample ls;
@@ -248,7 +279,7 @@ TEST_CASE("directional_emitter_is_a_delta_direction_at_infinity") {
   CHECK((y.at_infinity && !y.on_surface && y.pdf_a == 0.5f));
   CHECK_NEAR(y.p.z, 1.f, 1e-6f);
   EmitterDirection dir;
-  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, {0.9f, 0.1f}, dir));
+  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, y.uv, {0.9f, 0.1f}, dir));
   CHECK_NEAR(dir.w.z, -1.f, 1e-6f);
   CHECK_NEAR(dir.origin.z, 2.f, 1e-5f);
   CHECK(length(dir.origin - Vec3(1.f, 0.f, 2.f)) <= 2.f + 1e-5f);
@@ -273,7 +304,7 @@ TEST_CASE("constant_emitter_samples_the_sphere_and_knows_its_density") {
   CHECK((y.at_infinity && y.pdf_a == ls.pdf_w && y.pdf_a == pdf_Le_position(e, 0.25f, y.p)));
   CHECK_NEAR(length(y.p - ls.wi), 0.f, 1e-6f);
   EmitterDirection dir;
-  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, {0.6f, 0.3f}, dir));
+  REQUIRE(sample_Le_direction(e, y.pdf_a, y.p, y.uv, {0.6f, 0.3f}, dir));
   CHECK_NEAR(dot(dir.w, y.p), -1.f, 1e-6f);
   CHECK_NEAR(dot(dir.origin, y.p), 3.f, 1e-5f);  // on the disk facing the light, r from the centre
   CHECK_NEAR(dir.beta.x / (0.5f / (y.pdf_a * dir.pdf_w)), 1.f, 1e-5f);

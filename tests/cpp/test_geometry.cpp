@@ -24,8 +24,8 @@ TEST_CASE("hits_from_both_sides_with_right_hand_normal") {
   CHECK_NEAR(hit.p.y, 0.3f, 1e-6f);
   CHECK(hit.n.z > 0.99f);  // (v1 - v0) x (v2 - v0) = +z
   CHECK(hit.emitter != nullptr);
-  CHECK(!is_black(radiance(*hit.emitter, Vec3(0, 0, 1))));  // front side emits
-  CHECK(is_black(radiance(*hit.emitter, Vec3(0, 0, -1))));  // back side does not
+  CHECK(!is_black(radiance(*hit.emitter, Vec3(0, 0, 1), hit.uv)));  // front side emits
+  CHECK(is_black(radiance(*hit.emitter, Vec3(0, 0, -1), hit.uv)));  // back side does not
   CHECK(scene.intersect(Ray{{0.2f, 0.3f, -1.f}, {0, 0, 1}}, hit));
   CHECK(!scene.intersect(Ray{{0.6f, 0.6f, 1.f}, {0, 0, -1}}, hit));  // past the hypotenuse
   CHECK(!scene.intersect(Ray{{0.2f, 0.3f, 1.f}, {0, 0, 1}}, hit));   // behind the origin

@@ -220,7 +220,7 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_point_and_spot_lights") {
       if (path[k - 1].delta || path[k - 1].type != VertexType::Surface) continue;
       const Emitter& e = scene.emitters()[first_light + (i + k) % 2];
       const Vec3 at = sample_Le_position(e, 1.f, {0.5f, 0.5f}).p;
-      if (is_black(radiance(e, path[k - 1].p - at))) continue;
+      if (is_black(radiance(e, path[k - 1].p - at, {}))) continue;
       Path full(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(k));
       Vertex light;
       light.type = VertexType::Light;

@@ -41,6 +41,7 @@ The references (see README.md beside them for how long they took):
 * ``textured_64``: ``cornell_box(resolution=(64, 64), variant="textured")`` (a bitmap back
   wall, a checkerboard floor, an aluminium block of checkerboard roughness), ``max_depth=8``,
   ``rr_depth=5``.
+* ``lamp_64``: the classic box whose ceiling light's radiance is a bitmap texture.
 * ``sun_64``, ``sky_64``, ``envmap_64``: the open-top box lit by a directional light, a
   constant environment and an environment map (``cornell_box(variant=...)``).
 * ``point_64``, ``spot_64``: ``cornell_box(resolution=(64, 64), variant="point")`` and
@@ -174,6 +175,13 @@ def _references() -> dict[str, Reference]:
             "envmap_64",
             'cornell_box(resolution=(64, 64), variant="envmap")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="envmap"),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "lamp_64",
+            'cornell_box(resolution=(64, 64), variant="lamp")',
+            lambda: scenes.cornell_box(resolution=(64, 64), variant="lamp"),
             spp=131072,
             max_depth=8,
         ),

@@ -248,8 +248,8 @@ def save_mitsuba_xml(
         _element(shape, "boolean", name="face_normals", value="false" if smooth else "true")
         _write_bsdf(shape, mesh.material, functools.partial(_save_texels, mesh_dir, key))
         if mesh.is_emitter:
-            emitter = _element(shape, "emitter", type="area")
-            _element(emitter, "rgb", name="radiance", value=_fmt(mesh.emission))
+            save = functools.partial(_save_texels, mesh_dir, f"{key}_emitter")
+            _write_plugin(shape, "emitter", mesh._mitsuba_emitter(), save_texels=save)
     for i, light in enumerate(scene.emitters):
         _write_emitter(root, light, functools.partial(_save_texels, mesh_dir, f"emitter{i}"))
     ET.indent(root)

@@ -742,7 +742,7 @@ def _shape(
         )
     props = _properties(ctx, element, _SHAPE_PROPERTIES[kind], f"shape {kind!r}")
     material: Material | None = None
-    emission: RGB = (0.0, 0.0, 0.0)
+    emission: RGB | Texture = (0.0, 0.0, 0.0)
     for child in element:
         if child.tag in _PROPERTY_TAGS or child.tag == "transform":
             continue
@@ -757,22 +757,27 @@ def _shape(
                 raise ctx.error(child, "only area emitters can be attached to a shape")
             if sum(c.tag == "emitter" for c in element) > 1:
                 raise ctx.error(child, "a shape can have only one emitter")
-            eprops = _properties(ctx, child, {"radiance": ("rgb", "float")}, "area emitter")
+            eprops = _properties(ctx, child, {"radiance": _COLOUR}, "area emitter")
             _no_children(ctx, child)
             if "radiance" not in eprops:
                 raise ctx.error(child, 'an area emitter needs a radiance (<rgb name="radiance">)')
-            emission = _rgb_value(ctx, eprops["radiance"])
+            emission = _rgb_or(ctx, eprops, "radiance", None)
         else:
             raise ctx.error(child, f"<{child.tag}> inside a shape is not supported")
 
     to_world = _transform(ctx, props["to_world"]) if "to_world" in props else np.eye(4)
     normals: np.ndarray | None = None
     uv: np.ndarray | None = None
-    if material is not None and material.textured and kind in ("cube", "sphere"):
+    textured_lamp = isinstance(emission, Texture)
+    if ((material is not None and material.textured) or textured_lamp) and kind in (
+        "cube",
+        "sphere",
+    ):
+        what = "an emitted radiance texture" if textured_lamp else "a textured BSDF"
         raise ctx.error(
             element,
-            f"a textured BSDF on a {kind} shape is not supported (dualight does not lay out "
-            "Mitsuba's texture coordinates on it); use a mesh with texture coordinates",
+            f"{what} on a {kind} shape is not supported (dualight does not lay out Mitsuba's "
+            "texture coordinates on it); use a mesh with texture coordinates",
         )
     if kind in ("obj", "ply"):
         if "filename" not in props:
@@ -806,7 +811,8 @@ def _shape(
         normals = None if normals is None else -normals
     name = element.get("id") or f"{label}{index}"
     if material is None:  # Mitsuba's default BSDF: diffuse 0.5, black on emitters
-        material = Diffuse((0.0,) * 3 if any(e > 0.0 for e in emission) else (0.5,) * 3)
+        emits = textured_lamp or any(e > 0.0 for e in emission)  # type: ignore[union-attr]
+        material = Diffuse((0.0,) * 3 if emits else (0.5,) * 3)
     try:
         scene.add_mesh(
             v,
@@ -1051,10 +1057,11 @@ def load_mitsuba_xml(
       ``plastic`` and ``roughplastic`` with Mitsuba 3's parameters (``int_ior``/``ext_ior``
       as numbers or Mitsuba's IOR names, defaults as in Mitsuba); see
       :mod:`dualight.materials`;
-    * ``<emitter type="area">`` inside a shape with an RGB ``radiance`` (one-sided, on the
-      normals' side); stand-alone ``point`` (``position`` or ``to_world``) and ``spot``
-      (``to_world``, its +z the beam's axis; ``cutoff_angle``, ``beam_width``) emitters with
-      an RGB or float ``intensity`` (:mod:`dualight.emitters`);
+    * ``<emitter type="area">`` inside a shape with an RGB ``radiance`` or a ``bitmap`` or
+      ``checkerboard`` texture of it (one-sided, on the normals' side); stand-alone
+      ``point`` (``position`` or ``to_world``) and ``spot`` (``to_world``, its +z the beam's
+      axis; ``cutoff_angle``, ``beam_width``) emitters with an RGB or float ``intensity``
+      (:mod:`dualight.emitters`);
     * ``<sensor type="perspective">`` with ``fov``, ``fov_axis`` (x, y, diagonal, smaller,
       larger; converted to dualight's fov along x), ``to_world`` (rotation and translation);
       its ``<film type="hdrfilm">`` ``width`` and ``height``; its sampler's ``sample_count``

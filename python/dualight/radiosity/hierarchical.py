@@ -208,6 +208,13 @@ class HierarchicalSolver:
                 "their first shot: radiosity.solve with method 'direct', 'jacobi', "
                 "'gauss_seidel' or 'southwell')"
             )
+        lamps = [m.name for m in scene.meshes if m.emission_texture is not None]
+        if lamps:
+            raise ValueError(
+                f"hierarchical radiosity takes constant emission only; mesh {lamps[0]!r} emits "
+                "a texture (the uniform solvers take each patch's mean: radiosity.solve with "
+                "method 'direct', 'jacobi', 'gauss_seidel' or 'southwell')"
+            )
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera

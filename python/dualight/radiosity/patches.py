@@ -123,11 +123,13 @@ def _triangle_uv(mesh: Any, sel: np.ndarray) -> np.ndarray:
     return mesh.uv[mesh.triangles[sel]]
 
 
-def _patch_uv(mesh: Any, sel: np.ndarray, corner_bary: np.ndarray) -> np.ndarray:
+def _patch_uv(
+    mesh: Any, sel: np.ndarray, corner_bary: np.ndarray, *, textured: bool | None = None
+) -> np.ndarray:
     """The (u, v) of the corners of mesh triangles ``sel``'s sub-triangles (barycentrics
-    ``corner_bary``, (K, 3, 2)): (S * K, 3, 2), NaN where the mesh's reflectance is not a
-    texture."""
-    if not mesh.material.textured:
+    ``corner_bary``, (K, 3, 2)): (S * K, 3, 2), NaN where ``textured`` is false (by default,
+    where the mesh's reflectance is not a texture)."""
+    if not (mesh.material.textured if textured is None else textured):
         return np.full((len(sel) * len(corner_bary), 3, 2), np.nan)
     src = _triangle_uv(mesh, sel)  # (S, 3, 2)
     b1, b2 = corner_bary[None, :, :, 0:1], corner_bary[None, :, :, 1:2]
@@ -144,13 +146,17 @@ def _mean_albedo(
     mesh_index: np.ndarray,
     uv_corners: np.ndarray,
     at: np.ndarray = _ALBEDO_POINTS,
+    *,
+    emission: bool = False,
 ) -> np.ndarray:
-    """Each textured patch's mean albedo over its area (its texture at the points ``at``)."""
+    """Each textured patch's mean albedo over its area (its texture at the points ``at``), or
+    (``emission``) its mean emitted radiance."""
     out = np.empty((len(mesh_index), 3))
     for m in np.unique(mesh_index):
         rows = np.nonzero(mesh_index == m)[0]
         points = np.einsum("qk,pkc->pqc", at, uv_corners[rows])  # (P, Q, 2)
-        texture = scene.meshes[m].material.reflectance
+        mesh = scene.meshes[m]
+        texture = mesh.emission_texture if emission else mesh.material.reflectance
         values = texture.eval(points.reshape(-1, 2)).reshape(len(rows), -1, 3)
         out[rows] = values.mean(axis=1)
     return out
@@ -227,8 +233,8 @@ class PatchMesh:
         Per patch, ``(N,)``, ``(N, 3)``, ``(N, 3)``.
     reflectance, emission:
         Per patch RGB, ``(N, 3)``: the mesh's diffuse albedo (a texture's mean over the
-        patch) and emitted radiosity ``E = pi * Le`` (W m^-2; point and spot lights are not
-        in it: see :meth:`direct_irradiance`).
+        patch) and emitted radiosity ``E = pi * Le`` (W m^-2; a radiance texture's mean over
+        the patch; point and spot lights are not in it: see :meth:`direct_irradiance`).
     uv_corners:
         ``(N, 3, 2)`` the texture coordinates of each patch's corners (NaN on untextured
         meshes), from which :meth:`Solution.render` draws textures.
@@ -273,6 +279,8 @@ class PatchMesh:
             subdivisions.append(per_edge)
         _check_memory(planned)
         uv_corners: list[np.ndarray] = []  # per patch, its corners' (u, v); NaN if untextured
+        lamp_uv: list[np.ndarray] = []  # the same where the mesh's emission is a texture
+        lamp_rows: list[np.ndarray] = []  # those patches' indices
         for m, (mesh, per_edge) in enumerate(zip(scene.meshes, subdivisions, strict=True)):
             corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             divisions = per_edge.astype(np.int64)
@@ -280,6 +288,10 @@ class PatchMesh:
                 bary, sub = grids.setdefault(int(n), _grid(int(n)))
                 sel = np.nonzero(divisions == n)[0]
                 uv_corners.append(_patch_uv(mesh, sel, bary[sub]))
+                if mesh.emission_texture is not None:
+                    lamp_uv.append(_patch_uv(mesh, sel, bary[sub], textured=True))
+                    first = sum(len(t) for t in triangles)
+                    lamp_rows.append(np.arange(first, first + len(sel) * len(sub)))
                 c = corners[sel]  # (S, 3, 3)
                 pts = (
                     c[:, None, 0] * (1.0 - bary[:, 0] - bary[:, 1])[None, :, None]
@@ -300,6 +312,12 @@ class PatchMesh:
             self.reflectance = self.reflectance.copy()
             self.reflectance[textured] = _mean_albedo(
                 scene, self.mesh_index[textured], self.uv_corners[textured]
+            )
+        if lamp_rows:  # E = pi x the radiance texture's mean over each patch
+            lamps = np.concatenate(lamp_rows)
+            self.emission = self.emission.copy()
+            self.emission[lamps] = np.pi * _mean_albedo(
+                scene, self.mesh_index[lamps], np.concatenate(lamp_uv), emission=True
             )
 
     uv_corners: np.ndarray | None = None

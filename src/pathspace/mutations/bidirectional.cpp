@@ -99,7 +99,7 @@ bool BidirectionalMutation::propose(const MutationContext& ctx, const Path& x, P
     if (y.size() == 1) {
       // A direction of density 0 still makes the path: its transition density is then 0.
       EmitterDirection emitted;
-      sample_Le_direction(*v.emitter, v.pdf_fwd, v.p, next_2d(rng), emitted);
+      sample_Le_direction(*v.emitter, v.pdf_fwd, v.p, v.uv, next_2d(rng), emitted);
       d = emitted.w;
       origin = emitted.origin;
     } else if (!sample_scatter(v, direction(v, y[y.size() - 2]), TransportMode::Importance, next_2d(rng), d)) {
