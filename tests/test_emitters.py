@@ -72,11 +72,48 @@ def test_the_scene_takes_lights_and_keeps_them() -> None:
     assert np.asarray(dualight.render(dark, "path", spp=1, progress=False)).mean() > 0
 
 
-def test_hierarchical_radiosity_refuses_lights_without_a_surface() -> None:
+@pytest.mark.parametrize(
+    "variant",
+    [
+        "point",
+        pytest.param("spot", marks=pytest.mark.long),
+        "sun",
+        pytest.param("sky", marks=pytest.mark.long),
+        "envmap",
+    ],
+)
+def test_hierarchical_radiosity_takes_the_first_shot_of_every_element(variant: str) -> None:
+    """Hierarchical radiosity takes the lights' first shot per element, again for every
+    element its refinement creates: the leaves of one wall differ where the light does
+    (shadows, the spot's beam); <R, B> = <W, E> on the hierarchy, and <R, B> agrees with the
+    path tracer's mean of reflected light (its paths of more than one segment) as epsilon
+    refines; the light 10 % dimmer fails that."""
     from dualight import radiosity
 
-    with pytest.raises(ValueError, match="emission from patches only"):
-        radiosity.solve(scenes.cornell_box((16, 16), variant="point"), method="hierarchical")
+    def solved(scale: float) -> radiosity.Solution:
+        scene = scenes.cornell_box((32, 32), variant=variant, light_scale=scale)
+        return radiosity.solve(scene, method="hierarchical", epsilon=1e-4)
+
+    solution = solved(1.0)
+    assert solution.duality_gap < 1e-5
+    floor = solution.patches.mesh_index == 0
+    E = solution.E[floor, 1]
+    assert E.min() < 0.5 * E.max()  # the floor's leaves: some in shadow, some lit
+    scene = scenes.cornell_box((32, 32), variant=variant)
+    path = np.asarray(dualight.render(scene, "path", spp=512, seed=4, progress=False))
+    seen = np.asarray(dualight.render(scene, "path", spp=512, seed=4, max_depth=1, progress=False))
+    reflected = (path - seen).mean(axis=(0, 1))  # the same seed: the sky seen directly cancels
+    ratio = solution.measurement_primal / reflected
+    control = solved(0.9).measurement_primal / reflected
+    print(f"\n{variant}: <R,B> / path {np.round(ratio, 4)}; light x0.9 {np.round(control, 4)}")
+    assert np.all(np.abs(ratio - 1) < HIERARCHICAL_TOLERANCE)
+    assert np.any(np.abs(control - 1) > HIERARCHICAL_TOLERANCE)
+
+
+# Hierarchical radiosity at epsilon 1e-4 (importance oracle): <R, B> lay 2.5 % (point, red),
+# 1.7 % (spot), 1.4 % (sun), 1.2 % (sky) and 1.5 % (environment map) under the path tracer's
+# mean at most (at 1e-3: 4.6, 3.7, 3.0, 3.0 and 3.5 %); the classic box's patch light 2.2 %.
+HIERARCHICAL_TOLERANCE = 0.04
 
 
 @pytest.mark.parametrize("variant", ["point", "spot", "sun", "sky", "envmap"])
@@ -204,12 +241,8 @@ def test_mitsuba_xml_round_trip_at_infinity(tmp_path: Path, variant: str) -> Non
 @pytest.mark.parametrize("variant", ["sun", "sky", "envmap"])
 def test_emitters_at_infinity_in_scenes(variant: str) -> None:
     """A scene takes one environment, as in Mitsuba 3; scenes with emitters at infinity
-    pickle; hierarchical radiosity refuses them."""
-    from dualight import radiosity
-
+    pickle."""
     scene = scenes.cornell_box((16, 16), variant=variant)
-    with pytest.raises(ValueError, match="emission from patches only"):
-        radiosity.solve(scene, method="hierarchical")
     if variant != "sun":
         with pytest.raises(ValueError, match="takes one"):
             scene.add_emitter(dualight.ConstantEnvironment(1.0))

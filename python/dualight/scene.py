@@ -432,9 +432,9 @@ class Scene:
 
     def add_emitter(self, emitter: Emitter) -> int:
         """Add a point, spot or directional light or an environment (:mod:`dualight.emitters`);
-        returns its index in :attr:`emitters`. Radiosity's uniform solvers take them as a first
-        shot (the irradiance they give each patch directly); hierarchical radiosity refuses
-        them."""
+        returns its index in :attr:`emitters`. Radiosity takes them as a first shot (the
+        irradiance they give each patch directly, or each element of hierarchical radiosity
+        as refinement creates it)."""
         if not isinstance(emitter, _EMITTER_TYPES):
             raise TypeError(
                 "emitter must be a dualight.PointLight, SpotLight, DirectionalLight, "

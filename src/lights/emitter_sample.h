@@ -18,7 +18,7 @@ struct EmitterPoint {
   // A point on the sphere at infinity: p = n = the unit direction from the scene towards it,
   // pdf_a a solid-angle density (or a direction's discrete probability).
   bool at_infinity = false;
-  Point2 uv{0.f, 0.f};  // its surface coordinates (when on_surface)
+  Point2 uv{0.f, 0.f};  // its surface coordinates where its radiance is a texture (else 0, unread)
 };
 // A direction of emission from an emitter point.
 struct EmitterDirection {

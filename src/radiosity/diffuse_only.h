@@ -10,14 +10,20 @@
 
 namespace dualight {
 
-// Throws std::invalid_argument naming `who` and the first triangle whose BSDF is not a diffuse
-// reflector, or the emitters that are not on a surface (a point light has no patch to emit from).
-inline void require_diffuse_reflectors(const Scene& scene, const char* who) {
+// Throws std::invalid_argument naming `who` and the emitters that are not on a surface, for
+// solvers that take emission from the patches alone (a point light has no patch to emit from:
+// its first shot is radiosity/direct_irradiance.h's).
+inline void require_surface_emitters(const Scene& scene, const char* who) {
   const uint64_t off_surfaces = scene.emitter_count() - scene.features().emitter_triangles;
   if (off_surfaces > 0) {
     throw std::invalid_argument(std::string(who) + " solves emission from surfaces only: the scene has " +
                                 std::to_string(off_surfaces) + " emitter(s) off its surfaces");
   }
+}
+
+// Throws std::invalid_argument naming `who` and the first triangle whose BSDF is not a diffuse
+// reflector.
+inline void require_diffuse_reflectors(const Scene& scene, const char* who) {
   if (scene.features().all_diffuse()) return;
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
     const BsdfFlags f = flags(scene.material(prim).bsdf);

@@ -68,33 +68,40 @@ Color environment_irradiance(const Scene& scene, const Emitter& env, const Vec3&
 
 }  // namespace
 
-std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, int env_strata, uint64_t seed,
-                                     int threads, RenderControl& control) {
+FirstShot::FirstShot(const Scene& scene, int points_per_axis, int env_strata)
+    : scene_(scene), environment_(scene.environment()), env_strata_(env_strata) {
   if (points_per_axis < 1 || points_per_axis > 64) throw std::invalid_argument("points_per_axis must be in [1, 64]");
   if (env_strata < 1 || env_strata > 64) throw std::invalid_argument("env_strata must be in [1, 64]");
-  std::vector<const Emitter*> points;
-  for (const Emitter& e : patches.emitters()) {
-    if (is_delta_light(e)) points.push_back(&e);
+  for (const Emitter& e : scene.emitters()) {
+    if (is_delta_light(e)) delta_lights_.push_back(&e);
   }
-  const Emitter* env = patches.environment();
+  grid_ = centroid_grid(points_per_axis);
+}
+
+Color FirstShot::mean_irradiance(const Vec3 v[3], const Vec3& n, Pcg32& rng) const {
+  if (empty()) return Color(0.f);
+  Color sum(0.f);
+  for (const Point2 b : grid_) {
+    const Vec3 p = v[0] * (1.f - b.u - b.v) + v[1] * b.u + v[2] * b.v;
+    for (const Emitter* e : delta_lights_) sum += irradiance_from(scene_, *e, p, n);
+    if (environment_ != nullptr) sum += environment_irradiance(scene_, *environment_, p, n, env_strata_, rng);
+  }
+  return sum / static_cast<float>(grid_.size());
+}
+
+std::vector<Color> direct_irradiance(const Scene& patches, int points_per_axis, int env_strata, uint64_t seed,
+                                     int threads, RenderControl& control) {
+  const FirstShot first_shot(patches, points_per_axis, env_strata);
   const size_t n = patches.triangle_count();
   std::vector<Color> H(n, Color(0.f));
   control.total.store(n);
-  if (points.empty() && env == nullptr) return H;
-  const std::vector<Point2> grid = centroid_grid(points_per_axis);
+  if (first_shot.empty()) return H;
   parallel_for_each_index(threads, n, [&](size_t k) {
     if (control.cancelled()) return;
     const uint32_t prim = static_cast<uint32_t>(k);
-    const Vec3 normal = patches.normal(prim);
+    const Vec3 v[3] = {patches.vertex(prim, 0), patches.vertex(prim, 1), patches.vertex(prim, 2)};
     Pcg32 rng(seed, k);
-    Color sum(0.f);
-    for (const Point2 b : grid) {
-      const Vec3 p = patches.vertex(prim, 0) * (1.f - b.u - b.v) + patches.vertex(prim, 1) * b.u +
-                     patches.vertex(prim, 2) * b.v;
-      for (const Emitter* e : points) sum += irradiance_from(patches, *e, p, normal);
-      if (env != nullptr) sum += environment_irradiance(patches, *env, p, normal, env_strata, rng);
-    }
-    H[k] = sum / static_cast<float>(grid.size());
+    H[k] = first_shot.mean_irradiance(v, patches.normal(prim), rng);
     control.done.fetch_add(1, std::memory_order_relaxed);
   });
   return H;

@@ -10,9 +10,31 @@
 #include <vector>
 
 #include "core/render_control.h"
+#include "core/rng.h"
 #include "geometry/scene.h"
 
 namespace dualight {
+
+// The scene's emitters without a surface, and how their irradiance is averaged over a triangle:
+// at the centroids of an n x n split of it (n = points_per_axis, n^2 equal-area parts); the
+// environment's at each point from env_strata^2 stratified pairs of a cosine-weighted and an
+// environment-sampled direction. Throws std::invalid_argument on counts outside [1, 64].
+class FirstShot {
+ public:
+  FirstShot(const Scene& scene, int points_per_axis, int env_strata);
+  // Whether the scene has such emitters (else every irradiance is 0).
+  bool empty() const { return delta_lights_.empty() && environment_ == nullptr; }
+  // Mean irradiance over triangle v (unit normal n; one-sided: its front) with visibility; rng
+  // shifts the environment's strata.
+  Color mean_irradiance(const Vec3 v[3], const Vec3& n, Pcg32& rng) const;
+
+ private:
+  const Scene& scene_;
+  std::vector<const Emitter*> delta_lights_;
+  const Emitter* environment_ = nullptr;
+  std::vector<Point2> grid_;
+  int env_strata_;
+};
 
 // Mean irradiance over each patch from the emitters without a surface of `patches`, at the
 // centroids of an n x n split of the patch (n = points_per_axis, n^2 equal-area parts); the

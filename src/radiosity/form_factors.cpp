@@ -307,6 +307,7 @@ CsrMatrix compute_form_factors(const Scene& patches, const FormFactorOptions& op
                                FormFactorStats& stats, const FormFactorRows* wanted) {
   if (options.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
   require_diffuse_reflectors(patches, "radiosity form factors");
+  require_surface_emitters(patches, "radiosity form factors");
   const auto n = static_cast<uint32_t>(patches.triangle_count());
   if (wanted && (wanted->scatters.size() != n || (!wanted->receivers.empty() && wanted->receivers.size() != n))) {
     throw std::invalid_argument("scatters and receivers need one entry per patch");

@@ -22,6 +22,14 @@ Vec3 midpoint(const Vec3& a, const Vec3& b) { return (a + b) * 0.5f; }
 
 Vec3 point_in(const Vec3 v[3], float b1, float b2) { return v[0] * (1.f - b1 - b2) + v[1] * b1 + v[2] * b2; }
 
+// Barycentrics (b1, b2) of corners 1 and 2 of p, a point in the plane of triangle (p0, p1, p2).
+Point2 barycentrics(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p) {
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0, d = p - p0;
+  const double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+  const double r1 = dot(d, e1), r2 = dot(d, e2), det = g11 * g22 - g12 * g12;
+  return {static_cast<float>((g22 * r1 - g12 * r2) / det), static_cast<float>((g11 * r2 - g12 * r1) / det)};
+}
+
 // Groups link indices by a key (receiver or source) into CSR-like offsets.
 void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>& key,
                  std::vector<uint32_t>& offsets, std::vector<uint32_t>& order) {
@@ -37,7 +45,10 @@ void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>&
 
 HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
                                        RenderControl* control, const std::vector<Color>& albedo)
-    : scene_(scene), receiver_(std::move(receiver)), options_(options) {
+    : scene_(scene),
+      receiver_(std::move(receiver)),
+      options_(options),
+      first_shot_(scene, options.first_shot_points, options.env_strata) {
   if (!(options_.epsilon > 0.0)) throw std::invalid_argument("epsilon must be > 0");
   if (options_.shadow_rays < 0) throw std::invalid_argument("shadow_rays must be >= 0");
   if (options_.sweeps < 1) throw std::invalid_argument("sweeps must be >= 1");
@@ -58,18 +69,18 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     e.area = scene.area(t);
     e.root = t;
     const Color rho = albedo.empty() ? diffuse_reflectance(scene.material(t).bsdf) : albedo[t];
-    // A triangle's emitter is an AreaEmitter; its Le the mean over the triangle where textured.
+    for (int c = 0; c < 3; ++c) e.rho[c] = rho[c];
     const Emitter* emitter = scene.emitter_at(t);
-    const Color Le = emitter != nullptr ? std::get<AreaEmitter>(*emitter).Le : Color(0.f);
-    for (int c = 0; c < 3; ++c) {
-      e.rho[c] = rho[c];
-      e.E[c] = kPi * Le[c];  // emitted radiosity
-    }
-    emitted_radiosity_max_ =
-        std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] + e.E[1] * kLuminanceWeights[1] +
-                                             e.E[2] * kLuminanceWeights[2]);
+    emission_varies_ = emission_varies_ || (emitter != nullptr && std::get<AreaEmitter>(*emitter).texture != nullptr);
     largest = std::max(largest, e.area);
     elements_.push_back(e);
+  }
+  emission_varies_ = emission_varies_ || !first_shot_.empty();
+  set_emission(0, control);
+  for (const Element& e : elements_) {
+    emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] +
+                                                                  e.E[1] * kLuminanceWeights[1] +
+                                                                  e.E[2] * kLuminanceWeights[2]);
   }
   if (options_.min_area <= 0.0) options_.min_area = 1e-4 * largest;
   for (size_t k = 0; k < receiver_.prim.size(); ++k) {
@@ -154,6 +165,31 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
   link.F = static_cast<float>(visible_estimate(nullptr));
   link.F_oracle = static_cast<float>(visible_estimate(link.F_point));
   return link;
+}
+
+// pi x the mean radiance the element's root emits over it: its emitter's Le, or the mean of its
+// radiance texture over the element (the corners' surface coordinates from their barycentrics
+// in the root).
+Color HierarchicalSolver::mean_emitted_radiance(const Element& e) const {
+  const Emitter* emitter = scene_.emitter_at(e.root);  // a triangle's emitter is an AreaEmitter
+  if (emitter == nullptr) return Color(0.f);
+  const AreaEmitter& area = std::get<AreaEmitter>(*emitter);
+  if (area.texture == nullptr || e.parent < 0) return area.Le;  // a root: the scene's mean
+  Point2 uv[3];
+  for (int k = 0; k < 3; ++k) uv[k] = surface_uv(area, barycentrics(area.p0, area.p1, area.p2, e.v[k]));
+  return mean_rgb_over_triangle(*area.texture, uv[0], uv[1], uv[2]);
+}
+
+void HierarchicalSolver::set_emission(size_t first, const RenderControl* control) {
+  const size_t end = elements_.size();
+  parallel_for_each_index(options_.threads, end - first, [&](size_t k) {
+    if (control != nullptr && control->cancelled()) return;
+    Element& e = elements_[first + k];
+    Pcg32 rng(options_.seed ^ 0x51a7'f00d'5eedull, first + k);
+    const Color H = first_shot_.mean_irradiance(e.v, e.normal, rng);
+    const Color Le = mean_emitted_radiance(e);
+    for (int c = 0; c < 3; ++c) e.E[c] = kPi * Le[c] + e.rho[c] * H[c];
+  });
 }
 
 void HierarchicalSolver::subdivide(uint32_t e) {
@@ -393,6 +429,7 @@ void HierarchicalSolver::refine_links(std::vector<Refinement> to_refine, Hierarc
   std::vector<std::pair<uint32_t, uint32_t>> pending;  // (receiver, source) of new links
   std::vector<char> refine(links_.size(), 0);
   for (const Refinement& r : to_refine) refine[r.link] = r.split_receiver ? 2 : 1;
+  const size_t first_new = elements_.size();
   for (uint32_t l = 0; l < links_.size(); ++l) {
     const Link link = links_[l];
     if (!refine[l]) {
@@ -407,6 +444,7 @@ void HierarchicalSolver::refine_links(std::vector<Refinement> to_refine, Hierarc
       pending.emplace_back(split_receiver ? first + k : link.receiver, split_receiver ? link.source : first + k);
     }
   }
+  if (emission_varies_) set_emission(first_new, control);
   std::vector<Link> created(pending.size());
   std::atomic<uint64_t> rays{0}, skipped{0};
   constexpr size_t kChunk = 256;

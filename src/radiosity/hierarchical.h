@@ -13,6 +13,10 @@
 // of each (source_view), not the source's average; importance flows back to those children.
 // Above the per-link oracle, an a-posteriori check per element pushes links down where what the
 // element gathers varies across it by more than the oracle's threshold (flag_links).
+// Emitted radiosity is each element's own: pi times its emitter's mean radiance over it (a
+// radiance texture's mean over the element), plus the first shot of the emitters without a
+// surface, rho times their mean irradiance over it [Cohen and Wallace 1993, sec. 2.3]
+// (radiosity/direct_irradiance.h), taken again for every element refinement creates.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -20,6 +24,7 @@
 
 #include "core/render_control.h"
 #include "geometry/scene.h"
+#include "radiosity/direct_irradiance.h"
 
 namespace dualight {
 
@@ -36,6 +41,8 @@ struct HierarchicalOptions {
   int threads = 0;
   uint64_t max_links = 20000000;  // refinement stops before exceeding this (64 bytes each: about 1.3 GiB)
   bool skip_unneeded = true;      // no visibility rays in a convex enclosure (scene_features.h)
+  int first_shot_points = 4;      // per axis: the first shot's points per element (FirstShot)
+  int env_strata = 8;             // per axis: the environment's direction pairs per point
 };
 
 struct HierarchicalStep {
@@ -62,7 +69,8 @@ class HierarchicalSolver {
   // colour in [0, 1] per input triangle, replaces the materials' albedo (a textured material's
   // mean over each triangle: every element of a root keeps its root's). The initial linking
   // is O(triangles^2): `control` (optional) counts its rows and can cancel it, which leaves the
-  // solver unusable (cancelled() true): the caller discards it.
+  // solver unusable (cancelled() true): the caller discards it. The roots' first shot comes
+  // before it (cancellable, not counted).
   HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
                      RenderControl* control = nullptr, const std::vector<Color>& albedo = {});
 
@@ -135,6 +143,9 @@ class HierarchicalSolver {
   Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays, uint64_t& rays_skipped) const;
   bool facing(const Element& a, const Element& b) const;
   void subdivide(uint32_t e);
+  // Emitted radiosity of elements [first, end) (the roots, or those a refinement created).
+  void set_emission(size_t first, const RenderControl* control);
+  Color mean_emitted_radiance(const Element& e) const;
   // The three parts of a step: the oracle's flags, the refinement, the solve of both systems.
   std::vector<Refinement> flag_links(const RenderControl* control) const;
   std::vector<char> links_to_push_down(double measurement, const RenderControl* control) const;
@@ -157,6 +168,8 @@ class HierarchicalSolver {
   const Scene& scene_;
   ReceiverSamples receiver_;
   HierarchicalOptions options_;
+  FirstShot first_shot_;
+  bool emission_varies_ = false;  // textured emitters or a first shot: elements differ from their parents
   std::vector<Element> elements_;
   std::vector<Link> links_;
   uint32_t roots_;

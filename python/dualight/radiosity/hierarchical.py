@@ -41,6 +41,14 @@ A partly visible link is judged by its unoccluded form factor, so shadow boundar
 link keeps two independent visibility estimates: one carries light, the other decides
 refinement (with one, refinement would keep unlucky underestimates: a dark bias).
 
+Each element emits its own radiosity: pi times its mean emitted radiance (a radiance texture's
+mean over the element, textures being Mitsuba's ``area`` emitters with a textured
+``radiance``), plus the first shot of point, spot and directional lights and of the
+environment: its albedo times their mean irradiance over it, with visibility (as the uniform
+solvers' :meth:`PatchMesh.direct_irradiance`, 4 x 4 points per element, 8 x 8 environment
+direction pairs per point), taken again for every element refinement creates, so shadows and
+textures refine like any other variation.
+
 BF's threshold is relative to the brightest emitter, so dim interreflections stay coarse until
 epsilon is small; importance's is relative to the view's measurement. Measured in
 benchmarks/bench_hierarchical.py.
@@ -201,20 +209,6 @@ class HierarchicalSolver:
         progress: Callable[[int, int], None] | None,
     ) -> None:
         require_diffuse(scene)
-        if scene.emitters:
-            raise ValueError(
-                "hierarchical radiosity takes emission from patches only; the scene has "
-                f"{type(scene.emitters[0]).__name__} emitter(s) (the uniform solvers take "
-                "their first shot: radiosity.solve with method 'direct', 'jacobi', "
-                "'gauss_seidel' or 'southwell')"
-            )
-        lamps = [m.name for m in scene.meshes if m.emission_texture is not None]
-        if lamps:
-            raise ValueError(
-                f"hierarchical radiosity takes constant emission only; mesh {lamps[0]!r} emits "
-                "a texture (the uniform solvers take each patch's mean: radiosity.solve with "
-                "method 'direct', 'jacobi', 'gauss_seidel' or 'southwell')"
-            )
         if not scene.has_emitters:
             raise ValueError("scene has no emitter: give some mesh a positive emission")
         cam = camera or scene.camera
