@@ -72,10 +72,12 @@ def test_the_scene_takes_lights_and_keeps_them() -> None:
     assert np.asarray(dualight.render(dark, "path", spp=1, progress=False)).mean() > 0
 
 
+# make test keeps the sun (a delta direction) and the map (an environment); the point, the
+# spot and the sky are long (make test-long), for make test's time.
 @pytest.mark.parametrize(
     "variant",
     [
-        "point",
+        pytest.param("point", marks=pytest.mark.long),
         pytest.param("spot", marks=pytest.mark.long),
         "sun",
         pytest.param("sky", marks=pytest.mark.long),

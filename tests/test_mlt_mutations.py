@@ -114,6 +114,9 @@ SCENES = {
     # camera side's never reach (its density from there is 0, as a point light's).
     "envmap_box": lambda: scenes.cornell_box(resolution=(32, 32), variant="envmap"),
     "sun_box": lambda: scenes.cornell_box(resolution=(32, 32), variant="sun"),
+    # The classic box whose ceiling light emits a texture: new light subpaths start at the
+    # texture's value at their point (its surface coordinates).
+    "lamp_box": lambda: scenes.cornell_box(resolution=(32, 32), variant="lamp"),
 }
 
 
@@ -144,6 +147,7 @@ CASES = {
     "bidirectional (envmap)": Case("envmap_box", 4, 0, 1024, 64, min_acceptance=0.05),
     "lens_subpath (envmap)": Case("envmap_box", 4, 0, 1024, 64),
     "bidirectional (sun)": Case("sun_box", 4, 0, 1024, 64),
+    "bidirectional (lamp)": Case("lamp_box", 4, 0, 1024, 64),
 }
 
 
@@ -218,7 +222,8 @@ def _max_t(mutation: str, transition_ratio: str) -> tuple[float, float, dict]:
 
 # Marked long (make test-long) for make test's time: the sun's bidirectional chains and the
 # map's lens subpaths (make test keeps the map's bidirectional chains, which start light
-# subpaths at infinity and connect to it).
+# subpaths at infinity and connect to it; the textured lamp's bidirectional chains stay too:
+# its block tests against Mitsuba with the Metropolis methods are long).
 LONG_CASES = {"bidirectional (sun)", "lens_subpath (envmap)"}
 
 
