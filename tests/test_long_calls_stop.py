@@ -1,8 +1,8 @@
 """Ctrl-C stops every long radiosity call within 0.5 s (issue 18, item 3): the dense LU of the
 direct solver (2.5-6.4 s uninterruptible), form factors with many shadow rays (checked once per
 patch pair: 44 s at shadow_rays=10**6), the hierarchical solver's initial linking (O(n^2):
-6 s at 20k triangles) and its refinement. Each test sends SIGINT 0.3 s into the call and
-measures how long the call takes to raise KeyboardInterrupt."""
+6 s at 20k triangles), its roots' first shot and its refinement. Each test sends SIGINT 0.3 s
+into the call and measures how long the call takes to raise KeyboardInterrupt."""
 
 from __future__ import annotations
 
@@ -105,6 +105,20 @@ def test_hierarchical_linking_stops_on_ctrl_c() -> None:
     scene = _many_triangles(100)  # 20,000 more roots: seconds of O(n^2) linking
     latency = _latency_of_ctrl_c(lambda: HierarchicalSolver(scene, threads=1))
     assert latency < LATENCY, f"took {latency:.3f} s to stop"
+
+
+def test_hierarchical_first_shot_stops_on_ctrl_c_and_counts_in_the_progress() -> None:
+    """Under a sky, the roots' first shot (an environment's irradiance over each of 20,000
+    roots) comes before the linking: it stops on Ctrl-C, and the set-up's progress counts it
+    (its total is twice the roots: the first shot, then the linking's rows)."""
+    scene = _many_triangles(100)
+    scene.add_emitter(dualight.ConstantEnvironment(0.5))
+    latency = _latency_of_ctrl_c(lambda: HierarchicalSolver(scene, threads=1))
+    assert latency < LATENCY, f"took {latency:.3f} s to stop"
+    small = scenes.cornell_box((16, 16), variant="sky")
+    calls: list[tuple[int, int]] = []
+    HierarchicalSolver(small, progress=lambda done, total: calls.append((done, total)))
+    assert calls[-1] == (2 * small.triangle_count, 2 * small.triangle_count)
 
 
 def test_hierarchical_refinement_stops_on_ctrl_c_keeping_the_solution() -> None:

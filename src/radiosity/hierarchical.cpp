@@ -76,7 +76,9 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
     elements_.push_back(e);
   }
   emission_varies_ = emission_varies_ || !first_shot_.empty();
-  set_emission(0, control);
+  // Progress: the roots' first shot (when there is one), then link_roots' rows.
+  if (control != nullptr) control->total.store(first_shot_.empty() ? roots_ : 2 * uint64_t{roots_});
+  set_emission(0, control, control != nullptr && !first_shot_.empty() ? &control->done : nullptr);
   for (const Element& e : elements_) {
     emitted_radiosity_max_ = std::max(emitted_radiosity_max_, e.E[0] * kLuminanceWeights[0] +
                                                                   e.E[1] * kLuminanceWeights[1] +
@@ -93,7 +95,6 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
 
 // Initial links between every pair of input triangles that face each other and see each other.
 void HierarchicalSolver::link_roots(RenderControl* control) {
-  if (control != nullptr) control->total.store(roots_);
   std::vector<std::vector<Link>> per_root(roots_);
   std::atomic<uint64_t> rays{0}, skipped{0};
   parallel_for_each_index(options_.threads, roots_, [&](size_t i) {
@@ -180,7 +181,7 @@ Color HierarchicalSolver::mean_emitted_radiance(const Element& e) const {
   return mean_rgb_over_triangle(*area.texture, uv[0], uv[1], uv[2]);
 }
 
-void HierarchicalSolver::set_emission(size_t first, const RenderControl* control) {
+void HierarchicalSolver::set_emission(size_t first, const RenderControl* control, std::atomic<uint64_t>* done) {
   const size_t end = elements_.size();
   parallel_for_each_index(options_.threads, end - first, [&](size_t k) {
     if (control != nullptr && control->cancelled()) return;
@@ -189,6 +190,7 @@ void HierarchicalSolver::set_emission(size_t first, const RenderControl* control
     const Color H = first_shot_.mean_irradiance(e.v, e.normal, rng);
     const Color Le = mean_emitted_radiance(e);
     for (int c = 0; c < 3; ++c) e.E[c] = kPi * Le[c] + e.rho[c] * H[c];
+    if (done != nullptr) done->fetch_add(1, std::memory_order_relaxed);
   });
 }
 

@@ -19,6 +19,7 @@
 // (radiosity/direct_irradiance.h), taken again for every element refinement creates.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -70,7 +71,7 @@ class HierarchicalSolver {
   // mean over each triangle: every element of a root keeps its root's). The initial linking
   // is O(triangles^2): `control` (optional) counts its rows and can cancel it, which leaves the
   // solver unusable (cancelled() true): the caller discards it. The roots' first shot comes
-  // before it (cancellable, not counted).
+  // before it, cancellable and counted too (total: 2 x triangles when there is one).
   HierarchicalSolver(const Scene& scene, ReceiverSamples receiver, HierarchicalOptions options,
                      RenderControl* control = nullptr, const std::vector<Color>& albedo = {});
 
@@ -143,8 +144,9 @@ class HierarchicalSolver {
   Link make_link(uint32_t receiver, uint32_t source, uint64_t& rays, uint64_t& rays_skipped) const;
   bool facing(const Element& a, const Element& b) const;
   void subdivide(uint32_t e);
-  // Emitted radiosity of elements [first, end) (the roots, or those a refinement created).
-  void set_emission(size_t first, const RenderControl* control);
+  // Emitted radiosity of elements [first, end) (the roots, or those a refinement created);
+  // `done` (optional) counts them.
+  void set_emission(size_t first, const RenderControl* control, std::atomic<uint64_t>* done = nullptr);
   Color mean_emitted_radiance(const Element& e) const;
   // The three parts of a step: the oracle's flags, the refinement, the solve of both systems.
   std::vector<Refinement> flag_links(const RenderControl* control) const;
