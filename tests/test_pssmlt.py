@@ -125,12 +125,12 @@ NOT_B_NORMALISED = {"mlt_flat"}
 # Marked long (make test-long), left out of make test for its time as issues 19 and 20 added
 # scenes: the caustic box's and the door's flattened-importance runs, the Cornell box's
 # PSSMLT without Kelemen's MIS (the flattened importance keeps its Cornell box run in make
-# test; test_stats_and_options checks the plain estimator's weights against Kelemen's) and
-# the caustic box's MMLT (50 s: 36 runs for its skew; the caustic box keeps PSSMLT and MLT,
-# MMLT the Cornell, door, glossy, coated and point-light boxes), and the Cornell box's MMLT
-# under a time limit (37 s: its 12 renders of twice the budgeted runs' time; the same code
-# with a mutation budget stays, and test_stats_and_options checks that a time limit ends a
-# render).
+# test; test_stats_and_options checks the plain estimator's weights against Kelemen's), the
+# caustic box's MMLT (50 s: 36 runs for its skew; the caustic box keeps PSSMLT and MLT, MMLT
+# the Cornell, glossy and coated boxes), the Cornell box's MMLT under a time limit (37 s: its
+# 12 renders of twice the budgeted runs' time; the same code with a mutation budget stays,
+# and test_stats_and_options checks that a time limit ends a render) and the door's MMLT
+# (17 s; the door keeps PSSMLT and MLT).
 CASES = [("cornell", v) for v in VARIANTS] + [
     (s, v) for s in ("caustics", "door") for v in ("pssmlt", "mmlt", "mlt", "mlt_flat")
 ]
@@ -140,6 +140,7 @@ LONG_CASES = {
     ("door", "mlt_flat"),
     ("caustics", "mmlt"),
     ("cornell", "mmlt_time"),
+    ("door", "mmlt"),
 }
 # Glossy, coated, smooth-shaded and textured materials, and point, spot and textured area
 # lights and emitters at infinity (issue 20), in the three Metropolis methods (path-space MLT
@@ -149,9 +150,9 @@ LONG_CASES = {
 # subpaths and connections.
 MATERIAL_CASES = [
     ("glossy", "mmlt"),
-    ("glossy", "mlt"),
     ("coated", "mmlt"),
     ("textured", "mlt"),
+    ("glossy", "mlt"),
     ("glossy", "pssmlt"),
     ("coated", "pssmlt"),
     ("smooth", "pssmlt"),
@@ -184,8 +185,11 @@ MATERIAL_CASES = [
 # (15 s; make test ran 14:41 and 15:04 with it; its BDPT and light tracer stay), and the
 # textured area light's three (18 to 26 s each; test_pathspace_vs_mitsuba.py checks its path
 # and light tracers and BDPT, whose subpaths and connections PSSMLT and MMLT run, and
-# test_mlt_mutations.py path-space MLT's bidirectional chains under it).
-LONG_MATERIAL_CASES = set(MATERIAL_CASES[4:])
+# test_mlt_mutations.py path-space MLT's bidirectional chains under it), and the glossy box's
+# path-space MLT (21 s; test_mlt_mutations.py runs its bidirectional and lens-perturbation
+# chains on the glossy box against BDPT, and make test keeps MLT on the textured box, whose
+# aluminium block is glossy).
+LONG_MATERIAL_CASES = set(MATERIAL_CASES[3:])
 
 
 def _params(cases: list[tuple[str, str]], long: set[tuple[str, str]]) -> list:
