@@ -5,6 +5,7 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/triangle_grid.h"
 
 namespace dualight {
 
@@ -31,12 +32,9 @@ CameraHits trace_camera_hits(const Scene& scene, const PinholeCamera& camera, in
         const size_t k = pixel * hits.samples + s;
         hits.prim[k] = static_cast<int32_t>(hit.prim);
         // Barycentrics of the hit point, recomputed from the position (the scene keeps p, not u, v).
-        const Vec3 v0 = scene.vertex(hit.prim, 0), e1 = scene.vertex(hit.prim, 1) - v0,
-                   e2 = scene.vertex(hit.prim, 2) - v0, d = hit.p - v0;
-        const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), dp1 = dot(d, e1), dp2 = dot(d, e2);
-        const float det = d11 * d22 - d12 * d12;
-        hits.barycentric[2 * k] = det != 0.f ? (d22 * dp1 - d12 * dp2) / det : 0.f;
-        hits.barycentric[2 * k + 1] = det != 0.f ? (d11 * dp2 - d12 * dp1) / det : 0.f;
+        const Point2 b = barycentrics(scene.vertex(hit.prim, 0), scene.vertex(hit.prim, 1), scene.vertex(hit.prim, 2), hit.p);
+        hits.barycentric[2 * k] = b.u;
+        hits.barycentric[2 * k + 1] = b.v;
       }
     }
   });

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/triangle_grid.h"
+
 namespace dualight {
 
 namespace {
@@ -114,19 +116,11 @@ Color mean_rgb_over_triangle(const Texture& t, Point2 a, Point2 b, Point2 c) {
   const float span = std::max({uv_span(m, a, b), uv_span(m, b, c), uv_span(m, c, a)});
   const float wanted = 4.f * span * features_per_unit(t);
   const int n = std::isfinite(wanted) ? std::clamp(static_cast<int>(std::ceil(wanted)), 2, 64) : 64;
-  // Barycentrics (i + 1/3, j + 1/3) / n and (i + 2/3, j + 2/3) / n: the centroids of the upright
-  // and the inverted small triangles, n^2 of equal area.
   double sum[3] = {0.0, 0.0, 0.0};
-  const auto add = [&](float s, float r) {
-    const Point2 uv{a.u + s * (b.u - a.u) + r * (c.u - a.u), a.v + s * (b.v - a.v) + r * (c.v - a.v)};
+  for (const Point2 w : centroid_grid(n)) {
+    const Point2 uv{a.u + w.u * (b.u - a.u) + w.v * (c.u - a.u), a.v + w.u * (b.v - a.v) + w.v * (c.v - a.v)};
     const Color x = eval_rgb(t, uv);
     for (int k = 0; k < 3; ++k) sum[k] += x[k];
-  };
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; i + j < n; ++j) {
-      add((i + 1.f / 3.f) / n, (j + 1.f / 3.f) / n);
-      if (i + j + 1 < n) add((i + 2.f / 3.f) / n, (j + 2.f / 3.f) / n);
-    }
   }
   const double count = static_cast<double>(n) * n;
   return Color(static_cast<float>(sum[0] / count), static_cast<float>(sum[1] / count), static_cast<float>(sum[2] / count));

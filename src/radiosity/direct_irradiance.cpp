@@ -7,22 +7,11 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/triangle_grid.h"
 
 namespace dualight {
 
 namespace {
-
-// Barycentrics (b1, b2) of the centroids of an n x n split of a triangle.
-std::vector<Point2> centroid_grid(int n) {
-  std::vector<Point2> out;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n - i; ++j) {
-      out.push_back({(i + 1.f / 3.f) / n, (j + 1.f / 3.f) / n});
-      if (i + j <= n - 2) out.push_back({(i + 2.f / 3.f) / n, (j + 2.f / 3.f) / n});
-    }
-  }
-  return out;
-}
 
 // Irradiance at p (on a patch of normal n) from one delta emitter, visibility included. Patches
 // are one-sided, as the form factors and Mitsuba's diffuse BSDF: light behind the patch (a sun

@@ -11,6 +11,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/stopwatch.h"
+#include "core/triangle_grid.h"
 #include "radiosity/diffuse_only.h"
 #include "radiosity/form_factors.h"
 
@@ -21,14 +22,6 @@ namespace {
 Vec3 midpoint(const Vec3& a, const Vec3& b) { return (a + b) * 0.5f; }
 
 Vec3 point_in(const Vec3 v[3], float b1, float b2) { return v[0] * (1.f - b1 - b2) + v[1] * b1 + v[2] * b2; }
-
-// Barycentrics (b1, b2) of corners 1 and 2 of p, a point in the plane of triangle (p0, p1, p2).
-Point2 barycentrics(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p) {
-  const Vec3 e1 = p1 - p0, e2 = p2 - p0, d = p - p0;
-  const double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
-  const double r1 = dot(d, e1), r2 = dot(d, e2), det = g11 * g22 - g12 * g12;
-  return {static_cast<float>((g22 * r1 - g12 * r2) / det), static_cast<float>((g11 * r2 - g12 * r1) / det)};
-}
 
 // Groups link indices by a key (receiver or source) into CSR-like offsets.
 void group_links(size_t n_elements, size_t n_links, const std::vector<uint32_t>& key,

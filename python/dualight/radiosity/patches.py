@@ -141,7 +141,7 @@ def _patch_uv(
     return uv.reshape(-1, 3, 2)
 
 
-def _mean_albedo(
+def _texture_means(
     scene: Scene,
     mesh_index: np.ndarray,
     uv_corners: np.ndarray,
@@ -149,8 +149,8 @@ def _mean_albedo(
     *,
     emission: bool = False,
 ) -> np.ndarray:
-    """Each textured patch's mean albedo over its area (its texture at the points ``at``), or
-    (``emission``) its mean emitted radiance."""
+    """Each patch's mean albedo over its area (its reflectance texture at the points ``at``),
+    or (``emission``) its mean emitted radiance (its emission texture's)."""
     out = np.empty((len(mesh_index), 3))
     for m in np.unique(mesh_index):
         rows = np.nonzero(mesh_index == m)[0]
@@ -175,7 +175,7 @@ def triangle_albedo(scene: Scene) -> np.ndarray | None:
         rows = np.broadcast_to(np.asarray(mesh.reflectance, np.float64), (len(mesh.triangles), 3))
         if mesh.material.textured:
             uv = _triangle_uv(mesh, np.arange(len(mesh.triangles)))
-            rows = _mean_albedo(scene, np.full(len(rows), m), uv, at)
+            rows = _texture_means(scene, np.full(len(rows), m), uv, at)
         out.append(rows)
     return np.concatenate(out)
 
@@ -281,6 +281,7 @@ class PatchMesh:
         uv_corners: list[np.ndarray] = []  # per patch, its corners' (u, v); NaN if untextured
         lamp_uv: list[np.ndarray] = []  # the same where the mesh's emission is a texture
         lamp_rows: list[np.ndarray] = []  # those patches' indices
+        patch_count = 0
         for m, (mesh, per_edge) in enumerate(zip(scene.meshes, subdivisions, strict=True)):
             corners = mesh.vertices[mesh.triangles]  # (T, 3, 3)
             divisions = per_edge.astype(np.int64)
@@ -290,8 +291,8 @@ class PatchMesh:
                 uv_corners.append(_patch_uv(mesh, sel, bary[sub]))
                 if mesh.emission_texture is not None:
                     lamp_uv.append(_patch_uv(mesh, sel, bary[sub], textured=True))
-                    first = sum(len(t) for t in triangles)
-                    lamp_rows.append(np.arange(first, first + len(sel) * len(sub)))
+                    lamp_rows.append(np.arange(patch_count, patch_count + len(sel) * len(sub)))
+                patch_count += len(sel) * len(sub)
                 c = corners[sel]  # (S, 3, 3)
                 pts = (
                     c[:, None, 0] * (1.0 - bary[:, 0] - bary[:, 1])[None, :, None]
@@ -310,13 +311,13 @@ class PatchMesh:
         textured = ~np.isnan(self.uv_corners[:, 0, 0])
         if np.any(textured):
             self.reflectance = self.reflectance.copy()
-            self.reflectance[textured] = _mean_albedo(
+            self.reflectance[textured] = _texture_means(
                 scene, self.mesh_index[textured], self.uv_corners[textured]
             )
         if lamp_rows:  # E = pi x the radiance texture's mean over each patch
             lamps = np.concatenate(lamp_rows)
             self.emission = self.emission.copy()
-            self.emission[lamps] = np.pi * _mean_albedo(
+            self.emission[lamps] = np.pi * _texture_means(
                 scene, self.mesh_index[lamps], np.concatenate(lamp_uv), emission=True
             )
 
