@@ -339,9 +339,9 @@ SCENE_FILES = [
     ),
     (
         "xml unsupported shape",
-        lambda t: dualight.load_mitsuba_xml(_scene_xml(t, '<shape type="disk"/>')),
+        lambda t: dualight.load_mitsuba_xml(_scene_xml(t, '<shape type="cylinder"/>')),
         ValueError,
-        "shape type 'disk' is not supported",
+        "shape type 'cylinder' is not supported",
     ),
     (
         "xml unsupported bsdf",

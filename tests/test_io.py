@@ -521,7 +521,11 @@ def test_xml_film_defaults_and_filter_warning(tmp_path: Path) -> None:
 # Mitsuba XML: unsupported features and bad input
 
 UNSUPPORTED = [
-    ("shape disk", '<shape type="disk"/>', "shape type 'disk' is not supported.*rectangle"),
+    (
+        "shape cylinder",
+        '<shape type="cylinder"/>',
+        "shape type 'cylinder' is not supported.*rectangle",
+    ),
     (
         "bsdf hair",
         '<shape type="cube"><bsdf type="hair"/></shape>',
@@ -555,7 +559,7 @@ UNSUPPORTED = [
         '<shape type="cube"><bsdf type="diffuse"><rgb name="colour" value="1"/></bsdf></shape>',
         "property 'colour' of diffuse",
     ),
-    ("include", '<include filename="other.xml"/>', "<include.*element not supported"),
+    ("medium", '<medium type="homogeneous"/>', "<medium.*element not supported"),
     (
         "transform op",
         '<shape type="cube"><transform name="to_world"><shear/></transform></shape>',

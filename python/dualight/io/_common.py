@@ -23,11 +23,12 @@ def _existing_file(path: PathLike, what: str) -> Path:
 
 
 def _trimesh_geometries(
-    path: Path, file_type: str, text: str | None = None
+    path: Path, file_type: str, text: str | None = None, maintain_order: bool = True
 ) -> list[tuple[str, Any]]:
     """The triangle meshes of an OBJ or PLY file as ``(name, trimesh.Trimesh)`` pairs, in file
-    order, with vertices neither merged nor reordered. ``text``, if given, is read instead of
-    the file's contents (files it names are still looked up beside ``path``)."""
+    order, with vertices neither merged nor reordered (unless not ``maintain_order``: an OBJ's
+    vertices are then one per distinct ``v/vt/vn`` triple of its faces). ``text``, if given, is
+    read instead of the file's contents (files it names are still looked up beside ``path``)."""
     import trimesh
     import trimesh.resolvers
 
@@ -45,7 +46,7 @@ def _trimesh_geometries(
             resolver=resolver,
             force="scene",
             process=False,
-            maintain_order=True,
+            maintain_order=maintain_order,
         )
     except Exception as exc:  # noqa: BLE001 - the library raises many kinds on bad files
         raise ValueError(f"cannot read {file_type.upper()} file {str(path)!r}: {exc}") from exc
@@ -151,8 +152,11 @@ def _angle_weighted_normals(v: np.ndarray, f: np.ndarray) -> np.ndarray | None:
 
 def _loaded_uv(geom: Any, file_type: str) -> np.ndarray | None:
     """The texture coordinates an OBJ/PLY file gave per vertex, as Mitsuba reads them (an OBJ's
-    ``vt`` with v flipped, ``1 - v``, so images appear upright; a PLY's as they are), or None."""
+    ``vt`` with v flipped, ``1 - v``, so images appear upright; a PLY's as they are: ``u v``,
+    ``s t``, ``texture_u texture_v`` or ``texture_s texture_t``), or None."""
     uv = getattr(getattr(geom, "visual", None), "uv", None)
+    if uv is None and file_type == "ply":
+        uv = _ply_texture_st(geom)
     if uv is None:
         return None
     uv = np.asarray(uv, dtype=np.float64)
@@ -161,3 +165,16 @@ def _loaded_uv(geom: Any, file_type: str) -> np.ndarray | None:
     if file_type == "obj":
         uv = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]])
     return uv
+
+
+def _ply_texture_st(geom: Any) -> np.ndarray | None:
+    """A PLY's ``texture_s``/``texture_t`` vertex properties (which Mitsuba reads as texture
+    coordinates and trimesh does not), from trimesh's raw PLY data, or None."""
+    raw = getattr(geom, "metadata", {}).get("_ply_raw", {}).get("vertex", {}).get("data")
+    # A structured array for a binary body, a dict of (V, 1) columns for an ASCII one.
+    names = (
+        raw.keys() if isinstance(raw, dict) else getattr(getattr(raw, "dtype", None), "names", None)
+    )
+    if not names or "texture_s" not in names or "texture_t" not in names:
+        return None
+    return np.column_stack([np.ravel(raw["texture_s"]), np.ravel(raw["texture_t"])])

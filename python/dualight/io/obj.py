@@ -87,9 +87,11 @@ def _read_mtl_files(obj: Path, text: str) -> dict[str, dict[str, Any]]:
     return materials
 
 
-def _obj_text(obj: Path) -> tuple[str, list[str]]:
-    """The OBJ file's text with its relative (negative) indices made absolute, and the material
-    names its ``usemtl`` statements use, in order.
+def _obj_text(obj: Path) -> tuple[str, list[str], bool]:
+    """The OBJ file's text with its relative (negative) indices made absolute, the material
+    names its ``usemtl`` statements use, in order, and whether a position is used with more
+    than one texture coordinate or normal (``f 1/1/1 ... f 1/5/2``; trimesh then has to split
+    the faces' ``v/vt/vn`` index streams into unique vertex triples, see :func:`_obj_meshes`).
 
     The OBJ format counts a negative index back from the elements read *so far*; trimesh
     counts it from the end of the file, so such indices are resolved here first. Index 0 and a
@@ -107,6 +109,8 @@ def _obj_text(obj: Path) -> tuple[str, list[str]]:
     materials: list[str] = []
     lines = text.splitlines()
     changed = False
+    attributes: dict[str, str] = {}  # position index -> its first "vt/vn" indices
+    split = False
     for number, line in enumerate(lines, start=1):
         words = line.split()
         if not words:
@@ -120,7 +124,20 @@ def _obj_text(obj: Path) -> tuple[str, list[str]]:
             if resolved != words[1:]:
                 lines[number - 1] = " ".join([words[0], *resolved])
                 changed = True
-    return ("\n".join(lines) + "\n" if changed else text), materials
+            for corner in resolved:
+                position, _, rest = corner.partition("/")
+                split = split or attributes.setdefault(position, rest) != rest
+    return ("\n".join(lines) + "\n" if changed else text), materials, split
+
+
+def _obj_meshes(obj: Path, text: str, split: bool) -> list[tuple[str, Any]]:
+    """The triangle meshes of an OBJ file's (resolved) ``text``, as trimesh reads them.
+
+    Vertices keep the file's order unless a position carries different texture coordinates or
+    normals in different faces (``split``): trimesh then makes one vertex per distinct
+    ``v/vt/vn`` triple, as Mitsuba does, since keeping the order would give such a position
+    only one of its texture coordinates and normals."""
+    return _trimesh_geometries(obj, "obj", text, maintain_order=not split)
 
 
 def _absolute(token: str, counts: dict[str, int], obj: Path, line: int) -> str:
@@ -216,7 +233,7 @@ def load_obj(
         scene = Scene()
     elif not isinstance(scene, Scene):
         raise TypeError(f"scene must be a dualight.Scene, got {type(scene).__name__}")
-    text, used = _obj_text(obj)
+    text, used, split = _obj_text(obj)
     mtl = _read_mtl_files(obj, text)
     undefined = list(dict.fromkeys(m for m in used if m not in mtl))
     if undefined:
@@ -228,7 +245,7 @@ def load_obj(
             UserWarning,
             stacklevel=2,
         )
-    geometries = _trimesh_geometries(obj, "obj", text)
+    geometries = _obj_meshes(obj, text, split)
     ignored: dict[str, list[str]] = {}
     approximated: dict[str, str] = {}
     pending: list[tuple[np.ndarray, np.ndarray, Material, RGB, str, Any, Any]] = []
