@@ -78,7 +78,7 @@ bench-topics: install
 # tests check that it names everything _core exports).
 stubs: install
 	$(PY) -m pybind11_stubgen dualight._core -o build/stubs \
-	  --enum-class-locations "MisHeuristic|RefinementOracle|SamplerType|TransportMode|BsdfKind:dualight._core"
+	  --enum-class-locations "MisHeuristic|RefinementOracle|SamplerType|Strategies|TransportMode|BsdfKind:dualight._core"
 	cp build/stubs/dualight/_core.pyi python/dualight/_core.pyi
 
 clean:

@@ -58,6 +58,9 @@ SCENES = {
     "sky": functools.partial(scenes.cornell_box, variant="sky"),
     "envmap": functools.partial(scenes.cornell_box, variant="envmap"),
     "lamp": functools.partial(scenes.cornell_box, variant="lamp"),
+    "veach_mis": scenes.veach_mis,
+    "veach_bidir": scenes.veach_bidir,
+    "door_glossy": functools.partial(scenes.door_ajar, variant="glossy"),
 }
 
 
@@ -105,6 +108,9 @@ CONTROL_MATERIAL = {
     "sky": (("light_scale", 0.95),),
     "envmap": (("env_rotation", 30.0),),
     "lamp": (("texture_shift", 0.5),),
+    "veach_mis": (("roughness_scale", 1.2),),
+    "veach_bidir": (("light_scale", 0.95),),
+    "door_glossy": (("light_scale", 0.9),),
 }
 
 # A known defect (issue 18, found with the independent random streams): under a time limit
@@ -178,6 +184,15 @@ MATERIAL_CASES = [
     ("lamp", "mlt"),
     ("lamp", "pssmlt"),
     ("lamp", "mmlt"),
+    # Issue 21's classic scenes (Veach's plates, his bidirectional room, the glossy door),
+    # every Metropolis method, long: make test compares their path tracer and BDPT with
+    # Mitsuba (test_pathspace_vs_mitsuba.py), whose subpaths and connections these run.
+    *[
+        (s, v)
+        for s in ("veach_mis", "veach_bidir", "door_glossy")
+        for v in ("pssmlt", "mmlt", "mlt")
+    ],
+    ("door_glossy", "mlt_flat"),
 ]
 # Emitters at infinity (issue 20): the open-top box under a sun, a sky and an environment map,
 # all long for make test's time (its path, light and BDPT comparisons with Mitsuba and

@@ -90,13 +90,15 @@ def test_choice_types_match_the_runtime_tables() -> None:
     assert get_args(methods.Method) == dualight.METHODS == tuple(methods.ESTIMATORS)
     assert get_args(methods.Sampler) == tuple(_core.SamplerType.__members__)
     assert get_args(methods.Heuristic) == tuple(_core.MisHeuristic.__members__)
+    assert get_args(methods.Strategies) == tuple(_core.Strategies.__members__)
     assert get_args(methods.RadiosityMethod) == (*radiosity.SOLVERS, "hierarchical")
     assert get_args(Oracle) == tuple(_core.RefinementOracle.__members__)
     hints = get_type_hints(dualight.render)
-    assert (hints["method"], hints["sampler"], hints["heuristic"]) == (
+    assert (hints["method"], hints["sampler"], hints["heuristic"], hints["strategies"]) == (
         methods.Method,
         methods.Sampler,
         methods.Heuristic,
+        methods.Strategies,
     )
     hints = get_type_hints(radiosity.solve)
     assert (hints["method"], hints["oracle"]) == (methods.RadiosityMethod, Oracle)

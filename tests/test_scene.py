@@ -146,7 +146,8 @@ def test_core_options_bind_each_field_once(cls: type) -> None:
         assert getattr(cls, name).__doc__, name
         with pytest.raises(AttributeError):
             setattr(options, name, getattr(options, name))
-    names = {c.__name__: c for c in (*OPTIONS, _core.MisHeuristic, _core.SamplerType)}
+    enums = (_core.MisHeuristic, _core.SamplerType, _core.Strategies)
+    names = {c.__name__: c for c in (*OPTIONS, *enums)}
     names["RefinementOracle"] = _core.RefinementOracle
     again = eval(repr(options), names)  # the repr is Python source
     assert repr(again) == repr(options) and repr(options).startswith(f"{cls.__name__}(")

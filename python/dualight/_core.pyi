@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -358,12 +358,60 @@ class SamplerType:
     @property
     def value(self) -> int:
         ...
+class Strategies:
+    """
+    Members:
+    
+      mis
+    
+      bsdf
+    
+      light
+    """
+    __members__: typing.ClassVar[dict[str, Strategies]]
+    bsdf: typing.ClassVar[Strategies]
+    light: typing.ClassVar[Strategies]
+    mis: typing.ClassVar[Strategies]
+    @typing.overload
+    def __eq__(self, other: Strategies) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Strategies) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ...) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -376,6 +424,7 @@ class PathTracerOptions:
         skip_unneeded: Skip work the scene makes pointless; False does it all.
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
+        strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
         """
     def __repr__(self) -> str:
         ...
@@ -413,6 +462,11 @@ class PathTracerOptions:
     def spp(self) -> int:
         """
         Samples per pixel; 0 = until time_limit.
+        """
+    @property
+    def strategies(self) -> Strategies:
+        """
+        mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
         """
     @property
     def threads(self) -> int:
@@ -539,8 +593,8 @@ class BdptOptions:
     """
     Options of bidirectional path tracing.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategy_images')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategy_images: bool = False) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False) -> None:
         """
         Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -554,6 +608,7 @@ class BdptOptions:
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
         heuristic: How the strategies' samples are weighted (MIS).
+        strategies: mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample each path; light: s = 1 first, then s = 0, 2, 3, ...
         strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
         """
     def __repr__(self) -> str:
@@ -597,6 +652,11 @@ class BdptOptions:
     def spp(self) -> int:
         """
         Samples per pixel; 0 = until time_limit.
+        """
+    @property
+    def strategies(self) -> Strategies:
+        """
+        mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample each path; light: s = 1 first, then s = 0, 2, 3, ...
         """
     @property
     def strategy_images(self) -> bool:

@@ -17,7 +17,7 @@ from dualight import _core
 
 # The choice sets of the public functions, as types, so a type checker catches a misspelled
 # name. Each is defined once, here, and kept equal to its runtime table by the tests
-# (test_public_api.py): Method to METHODS, Sampler and Heuristic to the core's enums,
+# (test_public_api.py): Method to METHODS, Sampler, Heuristic and Strategies to the core's enums,
 # RadiosityMethod to dualight.radiosity.SOLVERS plus "hierarchical".
 Method = Literal["path", "light", "bdpt", "pssmlt", "mmlt", "mlt"]
 """A method of :func:`dualight.render` (the names of :data:`METHODS`)."""
@@ -25,6 +25,9 @@ Sampler = Literal["independent", "sobol"]
 """``render(sampler=...)``: the core's ``SamplerType`` names."""
 Heuristic = Literal["power", "balance"]
 """``render(heuristic=...)``: BDPT's MIS heuristic, the core's ``MisHeuristic`` names."""
+Strategies = Literal["mis", "bsdf", "light"]
+"""``render(strategies=...)``: the path tracer's and BDPT's sampling strategies, all combined
+by MIS or one alone, the core's ``Strategies`` names."""
 RadiosityMethod = Literal["direct", "jacobi", "gauss_seidel", "southwell", "hierarchical"]
 """A method of :func:`dualight.radiosity.solve`."""
 

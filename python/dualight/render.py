@@ -13,7 +13,16 @@ from dualight import _core
 from dualight._progress import TqdmProgress as _TqdmProgress
 from dualight.executor import as_executor, render_chain_split, render_split
 from dualight.image import Image
-from dualight.methods import ESTIMATORS, METHODS, METROPOLIS, Estimator, Heuristic, Method, Sampler
+from dualight.methods import (
+    ESTIMATORS,
+    METHODS,
+    METROPOLIS,
+    Estimator,
+    Heuristic,
+    Method,
+    Sampler,
+    Strategies,
+)
 from dualight.scene import Camera, Scene, _freezes_scene
 
 # The core's defaults of the keywords render shares with the options (BDPT's have them all).
@@ -157,6 +166,7 @@ def render(
     camera: Camera | None = None,
     sampler: Sampler = _DEFAULT.sampler.name,  # type: ignore[assignment]
     heuristic: Heuristic = _DEFAULT.heuristic.name,  # type: ignore[assignment]
+    strategies: Strategies = _DEFAULT.strategies.name,  # type: ignore[assignment]
     strategy_images: bool = _DEFAULT.strategy_images,
     mutations_per_pixel: int | None = None,
     mlt: Mapping[str, Any] | None = None,
@@ -246,6 +256,17 @@ def render(
         (luminance over the square root of a smoothed pilot estimate of the pixel's
         brightness: mutations spread towards dark pixels, lower relMSE where brightness
         varies a lot, as on the door; costs ``bootstrap / 4`` more BDPT samples).
+    strategies:
+        ``"path"`` and ``"bdpt"``: which sampling strategies make the image (Veach's figure
+        9.2 is three renders). ``"mis"`` (the default) combines them all by multiple
+        importance sampling. ``"bsdf"``: BSDF sampling alone (the path tracer without
+        next-event estimation; BDPT's strategies with the fewest light vertices, ``s = 0``).
+        ``"light"``: light sampling alone (next-event estimation; BDPT's ``s = 1``). Each stays
+        unbiased: a path goes to the other strategy only where the chosen one cannot sample it
+        (a point, spot or directional light for ``"bsdf"``; an emitter seen from the camera or
+        through a mirror for ``"light"``), so only the variance differs. The path tracer
+        skips the shadow rays that ``"bsdf"`` would weight 0; BDPT still evaluates every
+        connection.
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,
@@ -299,6 +320,7 @@ def render(
     if mlt is not None and not isinstance(mlt, Mapping):
         raise TypeError(f"mlt must be a dict of options, got {type(mlt).__name__}")
     _only_for("heuristic", heuristic == _DEFAULT.heuristic.name, estimator, method)
+    _only_for("strategies", strategies == _DEFAULT.strategies.name, estimator, method)
     _only_for("strategy_images", not strategy_images, estimator, method)
     if not estimator.takes("sampler"):
         # The Metropolis methods draw their own numbers: the name is checked, not used.
@@ -319,6 +341,7 @@ def render(
     for keyword, value in (
         ("sampler", sampler),
         ("heuristic", heuristic),
+        ("strategies", strategies),
         ("strategy_images", strategy_images),
     ):
         if estimator.takes(keyword):
@@ -351,6 +374,8 @@ def render(
             stats["light_paths"] = result["light_paths"]
         if method == "bdpt":
             stats["heuristic"] = heuristic
+        if method in ("path", "bdpt"):
+            stats["strategies"] = strategies
         stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
         return _image(result, stats, strategy_images)
 

@@ -7,7 +7,10 @@
 * :func:`furnace`: a closed cube with uniform reflectance and emission; every surface has the
   analytic radiance ``Le / (1 - rho)`` (:func:`furnace_radiance`).
 * :func:`rooms` and :func:`cube`: the test scenes of importance-driven radiosity.
-* :func:`door_ajar`: Veach's door, a room lit only through a door ajar (hard for path tracing).
+* :func:`door_ajar`: Veach's door, a room lit only through a door ajar (hard for path tracing);
+  ``variant="glossy"`` adds glossy and frosted-glass objects to the dark room.
+* :func:`veach_mis` and :func:`veach_bidir`: Veach's multiple-importance-sampling plates and his
+  bidirectional room lit indirectly by a shaded lamp, with a glass egg.
 * :func:`icosphere`: a sphere mesh (subdivided icosahedron) for any scene.
 """
 
@@ -15,9 +18,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Literal
 
 import numpy as np
 
+from dualight._shapes import _axis_rect, _orient, _quads_mesh, icosphere
+from dualight._veach_scenes import _ior, _scale, door_glossy_objects
+from dualight._veach_scenes import veach_bidir as veach_bidir
+from dualight._veach_scenes import veach_mis as veach_mis
 from dualight.emitters import (
     ConstantEnvironment,
     DirectionalLight,
@@ -89,19 +97,6 @@ CORNELL_RED = (0.570068, 0.0430135, 0.0443706)
 CORNELL_GREEN = (0.105421, 0.37798, 0.076425)
 CORNELL_LIGHT_RADIANCE = (18.387, 13.9873, 6.75357)
 CORNELL_LIGHT_REFLECTANCE = (0.78, 0.78, 0.78)
-
-
-def _orient(quad: np.ndarray, towards: np.ndarray, inward: bool) -> np.ndarray:
-    """Reverse a quad's vertex order if its normal does not face (or face away from) a point."""
-    n = np.cross(quad[1] - quad[0], quad[2] - quad[0])
-    facing = float(np.dot(n, towards - quad.mean(axis=0))) > 0.0
-    return quad if facing == inward else quad[::-1]
-
-
-def _quads_mesh(quads: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    vertices = np.concatenate(quads)
-    faces = np.arange(len(vertices)).reshape(-1, 4)
-    return vertices, faces
 
 
 def cornell_camera(resolution: tuple[int, int] = (128, 128)) -> Camera:
@@ -503,17 +498,6 @@ _ROOM_DIRECTIONS: dict[str, tuple[int, int]] = {
 }
 
 
-def _axis_rect(axis: int, value: float, lo: Sequence[float], hi: Sequence[float]) -> np.ndarray:
-    """The axis-aligned rectangle ``coordinate[axis] == value`` spanning ``lo..hi`` in the other
-    two coordinates (``lo[axis]`` and ``hi[axis]`` are ignored), as a quad."""
-    a, b = (axis + 1) % 3, (axis + 2) % 3
-    quad = np.empty((4, 3), dtype=np.float64)
-    quad[:, axis] = value
-    quad[:, a] = (lo[a], hi[a], hi[a], lo[a])
-    quad[:, b] = (lo[b], lo[b], hi[b], hi[b])
-    return quad
-
-
 def _rooms_grid(n: int, camera_room: int) -> tuple[int, dict[int, dict[str, int]], int]:
     """Columns, each room's neighbours by direction, and the room farthest (in doors) from
     ``camera_room`` (the highest index among ties)."""
@@ -773,109 +757,6 @@ def cube(
     return scene
 
 
-# Icosphere ------------------------------------------------------------------------------------
-_ICOSAHEDRON_FACES = np.array(
-    [
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
-    ],
-    dtype=np.int64,
-)  # fmt: skip
-
-
-def _icosahedron() -> np.ndarray:
-    """The 12 unit vertices of a regular icosahedron (the order of ``_ICOSAHEDRON_FACES``)."""
-    phi = 0.5 * (1.0 + math.sqrt(5.0))
-    v = np.array(
-        [
-            [-1, phi, 0], [1, phi, 0], [-1, -phi, 0], [1, -phi, 0],
-            [0, -1, phi], [0, 1, phi], [0, -1, -phi], [0, 1, -phi],
-            [phi, 0, -1], [phi, 0, 1], [-phi, 0, -1], [-phi, 0, 1],
-        ],
-        dtype=np.float64,
-    )  # fmt: skip
-    return v / np.linalg.norm(v, axis=1, keepdims=True)
-
-
-def icosphere(
-    centre: Sequence[float], radius: float, subdivisions: int = 3
-) -> tuple[np.ndarray, np.ndarray]:
-    """A sphere as a subdivided icosahedron: flat triangles facing outward.
-
-    Each subdivision splits every triangle into four at its edge midpoints, which are then
-    pushed out to the sphere, so the mesh has ``20 * 4**subdivisions`` triangles and
-    ``10 * 4**subdivisions + 2`` vertices, all at distance ``radius`` from ``centre``. It is
-    closed (every edge is shared by exactly two triangles) and every triangle's right-hand-rule
-    normal points away from the centre. Its area is a little less than the sphere's, ``4 pi
-    r^2``: by 24 %, 7.2 %, 1.9 %, 0.48 % and 0.12 % at 0 to 4 subdivisions (a
-    factor of about 4 per subdivision).
-
-    The sphere renders faceted (Mitsuba gets the same flat triangles, ``face_normals=True`` in
-    :mod:`dualight.mitsuba`) unless it is added with shading normals:
-    ``scene.add_mesh(v, f, normals=v - centre)``.
-
-    Parameters
-    ----------
-    centre : sequence of 3 floats
-        The sphere's centre.
-    radius : float
-        Its radius, ``> 0``.
-    subdivisions : int, optional
-        Number of 1-to-4 splits, in ``[0, 8]`` (8 makes 1,310,720 triangles).
-
-    Returns
-    -------
-    vertices : ndarray of shape (V, 3), float64
-    faces : ndarray of shape (F, 3), int64
-        Ready for :meth:`dualight.Scene.add_mesh`.
-
-    Raises
-    ------
-    ValueError
-        If ``centre`` is not 3 finite numbers, ``radius`` is not finite and positive, or
-        ``subdivisions`` is not an int in ``[0, 8]``.
-    """
-    c = np.asarray(centre, dtype=np.float64)
-    if c.shape != (3,) or not np.all(np.isfinite(c)):
-        raise ValueError(f"icosphere: centre must be 3 finite numbers, got {centre!r}")
-    r = float(radius)
-    if not (math.isfinite(r) and r > 0.0):
-        raise ValueError(f"icosphere: radius must be finite and > 0, got {radius!r}")
-    if (
-        isinstance(subdivisions, bool)
-        or not isinstance(subdivisions, int | np.integer)
-        or not 0 <= subdivisions <= 8
-    ):
-        raise ValueError(f"icosphere: subdivisions must be an int in [0, 8], got {subdivisions!r}")
-    v = _icosahedron()
-    f = _ICOSAHEDRON_FACES.copy()
-    for _ in range(int(subdivisions)):
-        # One midpoint per undirected edge, numbered after the existing vertices.
-        edges = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-        unique, inverse = np.unique(np.sort(edges, axis=1), axis=0, return_inverse=True)
-        mid = v[unique[:, 0]] + v[unique[:, 1]]
-        v = np.concatenate([v, mid / np.linalg.norm(mid, axis=1, keepdims=True)])
-        m01, m12, m20 = len(v) - len(unique) + np.ravel(inverse).reshape(3, -1)
-        a, b, cc = f[:, 0], f[:, 1], f[:, 2]
-        f = np.concatenate(
-            [
-                np.stack([a, m01, m20], axis=1),
-                np.stack([m01, b, m12], axis=1),
-                np.stack([m20, m12, cc], axis=1),
-                np.stack([m01, m12, m20], axis=1),
-            ]
-        )
-    # The icosahedron's face list is wound outward and splitting keeps the winding; check it.
-    tri = v[f]
-    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    outward = np.einsum("ij,ij->i", normals, tri.sum(axis=1))
-    if np.any(outward <= 0.0):  # pragma: no cover - a broken face table
-        raise AssertionError("icosphere: a face is wound inward")
-    return c + r * v, f
-
-
 # Door ajar ------------------------------------------------------------------------------------
 #: Inside of each room (x, y, z) in metres, and the wall between them.
 DOOR_ROOM_SIZE = (4.0, 2.5, 4.0)
@@ -944,6 +825,9 @@ def door_ajar(
     opening: float = DOOR_DEFAULT_OPENING,
     light_scale: float = 1.0,
     reflectance_scale: float = 1.0,
+    variant: Literal["classic", "glossy"] = "classic",
+    roughness_scale: float = 1.0,
+    ior: float = 1.5,
 ) -> Scene:
     """Veach's door: a dark room lit only through a door ajar from a bright room next door.
 
@@ -1007,6 +891,21 @@ def door_ajar(
         Multiplies the emitted radiance, ``> 0``.
     reflectance_scale : float, optional
         Multiplies every reflectance, in ``(0, 1.25]``.
+    variant : {"classic", "glossy"}, optional
+        ``"glossy"`` adds, as in Veach's figure 11.1, glossy objects to the dark room where
+        the light through the gap falls (meshes ``copper_sphere``, ``frosted_sphere``,
+        ``plastic_block``): a copper ``roughconductor`` sphere (radius 0.35 at ``(1.15,
+        0.35, 3.2)``), a frosted-glass ``roughdielectric`` sphere (radius 0.3 at ``(2.55, 0.3,
+        3.05)``, relative IOR ``ior``), both :func:`icosphere` meshes of 4 subdivisions, and
+        a blue ``roughplastic`` block ``[2.95, 3.55] x [0, 0.45] x [2.2, 2.8]`` (diffuse
+        (0.2, 0.25, 0.5), IOR 1.5), all GGX of roughness ``alpha = 0.1 * roughness_scale``.
+        The glossy reflections of light that came through the gap are where Metropolis
+        light transport beats BDPT most clearly.
+    roughness_scale : float, optional
+        ``"glossy"`` only: multiplies the objects' roughness (a negative control), in
+        ``(0, 10]``.
+    ior : float, optional
+        ``"glossy"`` only: the frosted sphere's relative IOR, in ``(1, 4]``.
 
     Returns
     -------
@@ -1015,8 +914,13 @@ def door_ajar(
     Raises
     ------
     ValueError
-        If ``opening`` is outside ``(0, 90]`` or a scale is out of its range.
+        If ``opening`` is outside ``(0, 90]``, a scale is out of its range, or ``variant`` is
+        unknown.
     """
+    if variant not in ("classic", "glossy"):
+        raise ValueError(f"door_ajar: unknown variant {variant!r}; choose 'classic' or 'glossy'")
+    roughness_scale = _scale(roughness_scale, "door_ajar", "roughness_scale", 10.0)
+    ior = _ior(ior, "door_ajar")
     opening = float(opening)
     if not (math.isfinite(opening) and 0.0 < opening <= 90.0):
         raise ValueError(f"door_ajar: opening must be in (0, 90] degrees, got {opening!r}")
@@ -1094,4 +998,6 @@ def door_ajar(
         reflectance=rho("light"),
         emission=tuple(light_scale * c for c in DOOR_LIGHT_RADIANCE),
     )
+    if variant == "glossy":
+        door_glossy_objects(scene, roughness_scale, ior)
     return scene

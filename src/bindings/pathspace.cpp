@@ -21,9 +21,17 @@ void bind_pathspace(py::module_& m) {
       .value("independent", SamplerType::Independent)
       .value("sobol", SamplerType::Sobol);
 
+  py::enum_<Strategies>(m, "Strategies")
+      .value("mis", Strategies::Mis)
+      .value("bsdf", Strategies::Bsdf)
+      .value("light", Strategies::Light);
+
   OptionsClass<PathTracerOptions> path(m, "PathTracerOptions", "Options of the path tracer.");
   add_pixel_fields(path, "Samples per pixel; 0 = until time_limit.");
-  path.bind();
+  path.field("strategies", &PathTracerOptions::strategies,
+             "mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone "
+             "(the other only where it alone can find the light).")
+      .bind();
 
   m.def(
       "render_path",
@@ -51,6 +59,9 @@ void bind_pathspace(py::module_& m) {
   OptionsClass<BdptOptions> bdpt(m, "BdptOptions", "Options of bidirectional path tracing.");
   add_pixel_fields(bdpt, "Samples per pixel; 0 = until time_limit.");
   bdpt.field("heuristic", &BdptOptions::heuristic, "How the strategies' samples are weighted (MIS).")
+      .field("strategies", &BdptOptions::strategies,
+             "mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample "
+             "each path; light: s = 1 first, then s = 0, 2, 3, ...")
       .field("strategy_images", &BdptOptions::strategy_images,
              "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).")
       .bind();

@@ -24,6 +24,8 @@ namespace dualight {
 
 struct BdptOptions : EstimatorOptions {
   MisHeuristic heuristic = MisHeuristic::Power;
+  // All strategies by MIS, or one alone (s = 0 first or s = 1 first; strategies.h).
+  Strategies strategies = Strategies::Mis;
   // One extra film layer per strategy holding its MIS-weighted contributions, which sum to the
   // image (needs a bounded max_depth).
   bool strategy_images = false;

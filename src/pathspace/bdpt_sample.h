@@ -63,7 +63,8 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   Color L(0.f);
   for_each_strategy(scene, camera, opt, paths, sampler, counters,
                     [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
-                      c *= mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, opt.heuristic);
+                      c *= mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, opt.heuristic,
+                                      opt.strategies);
                       if (t == 1) {
                         const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() +
                                                 static_cast<uint32_t>(raster.u);

@@ -1,9 +1,11 @@
 #include "pathspace/mis_weight.h"
 
+#include <algorithm>
+
 namespace dualight {
 
 float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
-                 const Vertex& sampled, int s, int t, MisHeuristic heuristic) {
+                 const Vertex& sampled, int s, int t, MisHeuristic heuristic, Strategies strategies) {
   if (s + t == 2) return 1.f;  // the only strategy kept for paths of one segment
   const Vertex* qs = s == 0 ? nullptr : (s == 1 ? &sampled : &light[s - 1]);
   const Vertex& pt = t == 1 ? sampled : cam[t - 1];
@@ -20,7 +22,20 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
   const auto remap0 = [](float pdf) { return pdf != 0.f ? pdf : 1.f; };
   const auto h = [heuristic](float r) { return heuristic == MisHeuristic::Power ? r * r : r; };
 
+  // Each other strategy that can sample the path, by its number of light vertices and its
+  // density relative to this one's: MIS sums h(ratio); one strategy alone keeps the most
+  // preferred (strategies.h).
   float sum = 0.f;
+  int best_rank = strategy_rank(strategies, s);
+  // Both count the same strategies as able to sample the path (those not connecting at a delta
+  // vertex), so one strategy alone keeps exactly one of them.
+  const auto other = [&](int s_other, float ratio) {
+    if (strategies == Strategies::Mis) {
+      sum += h(ratio);
+    } else {
+      best_rank = std::min(best_rank, strategy_rank(strategies, s_other));
+    }
+  };
   // Strategies with fewer camera vertices: move the connection towards the camera. The camera
   // itself (i = 0) cannot be hit by a light subpath.
   float ratio = 1.f;
@@ -28,7 +43,7 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
     const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : cam[i].pdf_rev);
     ratio *= remap0(rev) / remap0(cam[i].pdf_fwd);
     const bool delta_i = i != t - 1 && cam[i].delta;  // the connection vertex is never delta
-    if (!delta_i && !cam[i - 1].delta) sum += h(ratio);
+    if (!delta_i && !cam[i - 1].delta) other(s + t - i, ratio);
   }
   // Strategies with fewer light vertices: move the connection towards the emitter.
   ratio = 1.f;
@@ -40,8 +55,9 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
     // Before the emitter vertex: a delta position or direction (a point light, a directional
     // one) cannot be hit by a camera path.
     const bool delta_before = i > 0 ? light[i - 1].delta : is_delta_light(*v.emitter);
-    if (!delta_i && !delta_before) sum += h(ratio);
+    if (!delta_i && !delta_before) other(i, ratio);
   }
+  if (strategies != Strategies::Mis) return best_rank == strategy_rank(strategies, s) ? 1.f : 0.f;
   return 1.f / (1.f + sum);
 }
 

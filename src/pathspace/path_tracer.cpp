@@ -17,30 +17,32 @@ namespace {
 // (unless the path got here by a delta bounce or straight from the camera); times the path's
 // throughput beta.
 inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3& wo_world, const Color& beta,
-                           float prev_pdf_w, bool prev_delta) {
+                           float prev_pdf_w, bool prev_delta, Strategies strategies) {
   const Emitter& e = *hit.emitter;
   const Color Le = radiance(e, wo_world, hit.uv);
   if (is_black(Le)) return Color(0.f);
   if (prev_delta) return beta * Le;
   const float cos_light = std::abs(dot(hit.n, wo_world));
   const float pdf_light_w = pdf_Li(e, scene.emitter_pmf(e), -wo_world, hit.t, cos_light);
-  return beta * Le * power_heuristic(prev_pdf_w, pdf_light_w);
+  return beta * Le * two_strategy_weight(strategies, Strategies::Bsdf, prev_pdf_w, pdf_light_w);
 }
 
 // Radiance of the environment `env` a ray along unit d escaped to, weighted against next-event
 // estimation as emission_seen, times beta.
 inline Color environment_seen(const Scene& scene, const Emitter& env, const Vec3& d, const Color& beta,
-                              float prev_pdf_w, bool prev_delta) {
+                              float prev_pdf_w, bool prev_delta, Strategies strategies) {
   const Color Le = radiance(env, -d, {});
   if (is_black(Le) || prev_delta) return beta * Le;
-  return beta * (Le * power_heuristic(prev_pdf_w, pdf_Li(env, scene.emitter_pmf(env), d, 0.f, 1.f)));
+  const float pdf_light_w = pdf_Li(env, scene.emitter_pmf(env), d, 0.f, 1.f);
+  return beta * (Le * two_strategy_weight(strategies, Strategies::Bsdf, prev_pdf_w, pdf_light_w));
 }
 
 // Next-event estimation at `hit`: a light sample, MIS-weighted against BSDF sampling, times the
 // path's throughput beta.
 // World directions throughout: a Lambertian BSDF needs only the two cosines (bsdf.h).
 inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo_world,
-                        const Color& beta, float u_select, Point2 u_light, TraceCounters& counters) {
+                        const Color& beta, float u_select, Point2 u_light, Strategies strategies,
+                        TraceCounters& counters) {
   const EmitterChoice choice = scene.choose_emitter(u_select);
   LightSample ls;
   if (!sample_Li(*choice.emitter, choice.pmf, hit.p, u_light, ls)) return Color(0.f);
@@ -49,13 +51,16 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
     ++counters.skipped_connections;
     return Color(0.f);
   }
-  if (!shadow_ray_visible_to(scene, hit.p, hit.n, hit.prim, ls.p, ls.prim, ls.on_surface, counters)) {
-    return Color(0.f);
-  }
   const float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
   // A delta emitter (a point light, a direction) is found by no BSDF sample: its sample keeps
   // full weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
-  const float weight = is_delta_light(*choice.emitter) ? 1.f : power_heuristic(ls.pdf_w, pdf_bsdf_w);
+  const float weight = is_delta_light(*choice.emitter)
+                           ? 1.f
+                           : two_strategy_weight(strategies, Strategies::Light, ls.pdf_w, pdf_bsdf_w);
+  if (weight == 0.f) return Color(0.f);  // BSDF sampling alone: no shadow ray
+  if (!shadow_ray_visible_to(scene, hit.p, hit.n, hit.prim, ls.p, ls.prim, ls.on_surface, counters)) {
+    return Color(0.f);
+  }
   return beta * f * ls.Le * (std::abs(dot(ls.wi, hit.ns)) * weight / ls.pdf_w);
 }
 
@@ -76,13 +81,15 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     ++counters.rays;
     if (!scene.intersect(ray, hit)) {
       if (scene.environment() != nullptr) {
-        L += environment_seen(scene, *scene.environment(), ray.d, beta, prev_pdf_w, prev_delta);
+        L += environment_seen(scene, *scene.environment(), ray.d, beta, prev_pdf_w, prev_delta, opt.strategies);
       }
       break;
     }
 
     const Vec3 wo_world = -ray.d;
-    if (hit.emitter != nullptr) L += emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta);
+    if (hit.emitter != nullptr) {
+      L += emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta, opt.strategies);
+    }
     if (!depth_allows(depth + 1)) break;
 
     // The BSDF's frame is the shading normal's (it tells a dielectric's inside from its
@@ -98,7 +105,7 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      L += next_event(scene, hit, bsdf, wo_world, beta, u_select, u_light, counters);
+      L += next_event(scene, hit, bsdf, wo_world, beta, u_select, u_light, opt.strategies, counters);
     }
 
     BsdfSample bs;

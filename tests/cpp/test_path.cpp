@@ -126,7 +126,8 @@ struct StrategySum {
 // (x_0 the camera .. x_k on an emitter), each given the subpaths it would have drawn, with
 // densities recomputed from positions in both directions. A point emitter's x_k (at_point)
 // cannot be hit: no s = 0 strategy, and its camera-side density is 0.
-StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeuristic heuristic) {
+StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeuristic heuristic,
+                                Strategies strategies = Strategies::Mis) {
   const size_t n = full.size(), k = n - 1;
   const bool point = is_delta_light(*full[k].emitter);  // no path hits it
   std::vector<float> p_cam(n, 0.f), p_light(n, 0.f);
@@ -165,7 +166,7 @@ StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeurist
     const Vertex sampled = s == 1 ? light[0] : Vertex{};
     Vertex cam_vertex = full[0];
     out.sum += mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
-                          static_cast<int>(t), heuristic);
+                          static_cast<int>(t), heuristic, strategies);
   }
   return out;
 }
@@ -190,6 +191,10 @@ TEST_CASE("mis_weights_of_all_strategies_sum_to_one") {
       const StrategySum r =
           strategy_weight_sum(scene, full, (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
       CHECK_NEAR(r.sum, 1.f, 2e-4f);
+      // One strategy alone (BSDF or light sampling first): exactly one strategy keeps the path.
+      for (const Strategies alone : {Strategies::Bsdf, Strategies::Light}) {
+        CHECK(strategy_weight_sum(scene, full, MisHeuristic::Power, alone).sum == 1.f);
+      }
       ++checked;
       with_delta += r.any_delta;
     }
@@ -231,6 +236,9 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_point_and_spot_lights") {
       const StrategySum r =
           strategy_weight_sum(scene, full, (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance);
       CHECK_NEAR(r.sum, 1.f, 2e-4f);
+      for (const Strategies alone : {Strategies::Bsdf, Strategies::Light}) {
+        CHECK(strategy_weight_sum(scene, full, MisHeuristic::Power, alone).sum == 1.f);
+      }
       ++checked;
     }
   }
@@ -270,6 +278,7 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_infinity") {
       const auto heuristic = (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance;
       if (path.size() >= 3 && path.back().at_infinity) {
         CHECK_NEAR(strategy_weight_sum(scene, path, heuristic).sum, 1.f, 2e-4f);
+        CHECK(strategy_weight_sum(scene, path, heuristic, Strategies::Light).sum == 1.f);
         ++escaped;
       }
       for (size_t k = 2; k <= path.size(); ++k) {
@@ -282,6 +291,7 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_infinity") {
         light.at_point = light.at_infinity = true;
         full.push_back(light);
         CHECK_NEAR(strategy_weight_sum(scene, full, heuristic).sum, 1.f, 2e-4f);
+        CHECK(strategy_weight_sum(scene, full, heuristic, Strategies::Bsdf).sum == 1.f);
         ++sunlit;
       }
     }

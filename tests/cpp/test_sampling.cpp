@@ -8,6 +8,7 @@
 #include "core/frame.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "pathspace/strategies.h"
 
 using namespace dualight;
 
@@ -53,6 +54,29 @@ TEST_CASE("power_heuristic_weights_sum_to_one") {
   CHECK_NEAR(power_heuristic(1.f, 3.f) + power_heuristic(3.f, 1.f), 1.f, 1e-6f);
   CHECK(power_heuristic(0.f, 1.f) == 0.f);
   CHECK(power_heuristic(1.f, 0.f) == 1.f);
+}
+
+TEST_CASE("one_strategy_alone_weights_sum_to_one") {
+  // For every pair of densities (0 where a strategy cannot sample the point), the two
+  // strategies' weights sum to 1 under MIS and under either strategy alone; alone, the chosen
+  // one keeps every point it can sample.
+  const float pdfs[] = {0.f, 1e-3f, 0.5f, 2.f, 1e4f};
+  for (const Strategies chosen : {Strategies::Mis, Strategies::Bsdf, Strategies::Light}) {
+    for (const float p_bsdf : pdfs) {
+      for (const float p_light : pdfs) {
+        if (p_bsdf == 0.f && p_light == 0.f) continue;
+        const float w_bsdf = p_bsdf > 0.f ? two_strategy_weight(chosen, Strategies::Bsdf, p_bsdf, p_light) : 0.f;
+        const float w_light = p_light > 0.f ? two_strategy_weight(chosen, Strategies::Light, p_light, p_bsdf) : 0.f;
+        CHECK_NEAR(w_bsdf + w_light, 1.f, 1e-6f);
+        if (chosen == Strategies::Bsdf && p_bsdf > 0.f) CHECK(w_bsdf == 1.f);
+        if (chosen == Strategies::Light && p_light > 0.f) CHECK(w_light == 1.f);
+      }
+    }
+  }
+  // BDPT's preference: s = 0 first for BSDF sampling; s = 1, then s = 0 for light sampling.
+  CHECK(strategy_rank(Strategies::Bsdf, 0) < strategy_rank(Strategies::Bsdf, 1));
+  CHECK(strategy_rank(Strategies::Light, 1) < strategy_rank(Strategies::Light, 0));
+  CHECK(strategy_rank(Strategies::Light, 0) < strategy_rank(Strategies::Light, 2));
 }
 
 TEST_CASE("discrete_distribution_samples_in_proportion") {

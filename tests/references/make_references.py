@@ -44,6 +44,9 @@ The references (see README.md beside them for how long they took):
 * ``lamp_64``: the classic box whose ceiling light's radiance is a bitmap texture.
 * ``sun_64``, ``sky_64``, ``envmap_64``: the open-top box lit by a directional light, a
   constant environment and an environment map (``cornell_box(variant=...)``).
+* ``veach_mis_64``, ``veach_bidir_64``, ``door_glossy_64``: Veach's scenes
+  (``veach_mis()``, ``veach_bidir()``, ``door_ajar(variant="glossy")`` at 64 x 64),
+  ``max_depth=8``, ``rr_depth=5``.
 * ``point_64``, ``spot_64``: ``cornell_box(resolution=(64, 64), variant="point")`` and
   ``variant="spot"`` (the classic box lit by a point light or a spot light below the ceiling),
   ``max_depth=8``, ``rr_depth=5``.
@@ -183,6 +186,27 @@ def _references() -> dict[str, Reference]:
             'cornell_box(resolution=(64, 64), variant="lamp")',
             lambda: scenes.cornell_box(resolution=(64, 64), variant="lamp"),
             spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "veach_mis_64",
+            "veach_mis(resolution=(64, 64))",
+            lambda: scenes.veach_mis(resolution=(64, 64)),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "veach_bidir_64",
+            "veach_bidir(resolution=(64, 64))",
+            lambda: scenes.veach_bidir(resolution=(64, 64)),
+            spp=131072,
+            max_depth=8,
+        ),
+        Reference(
+            "door_glossy_64",
+            'door_ajar(resolution=(64, 64), variant="glossy")',
+            lambda: scenes.door_ajar(resolution=(64, 64), variant="glossy"),
+            spp=262144,
             max_depth=8,
         ),
     ]
