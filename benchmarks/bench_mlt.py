@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 import dualight
+from dualight import metrics
 from dualight.methods import METROPOLIS
 from dualight.plotting import save_relmse_against_time
 
@@ -64,6 +65,13 @@ VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
     "mlt_flat": ("mlt", {"mlt": {"importance": "flattened"}}),
 }
 MLT_METHODS = (*METROPOLIS, *VARIANTS)
+# The path tracer with one sampling strategy alone (bench_scenes.py on Veach's MIS plates).
+VARIANTS.update(
+    {
+        "path_bsdf": ("path", {"strategies": "bsdf"}),
+        "path_light": ("path", {"strategies": "light"}),
+    }
+)
 METHODS = ("path", "bdpt", *MLT_METHODS)
 # (faster?, than) pairs whose equal-time efficiency ratio is reported.
 RATIOS = [
@@ -216,11 +224,19 @@ def prepare(name: str) -> tuple[str, dualight.Scene, np.ndarray, np.ndarray, dic
     return ref_name, scene, ref, ref_var, info
 
 
-def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[str, Any] | None:
-    """Veach's figure on the door scene: BDPT at ``spp`` against MLT (Veach's luminance target,
-    and the flattened importance) in the same wall time, each seed's MLT given the time that
-    seed's BDPT took. relMSE is the mean over ``seeds``; the images are the first seed's."""
-    ref_name, scene, ref, ref_var, info = prepare(FIGURE_SCENE)
+def figure(
+    spp: int,
+    skipped: dict[str, str],
+    suffix: str,
+    seeds: int,
+    scene_name: str = FIGURE_SCENE,
+    stem: str = "bench_mlt",
+) -> dict[str, Any] | None:
+    """Veach's figure on the door scene (or ``scene_name``): BDPT at ``spp`` against MLT
+    (Veach's luminance target, and the flattened importance) in the same wall time, each
+    seed's MLT given the time that seed's BDPT took. relMSE is the mean over ``seeds``; the
+    images are the first seed's. Saved as ``{stem}_{scene_name}{suffix}.png``."""
+    ref_name, scene, ref, ref_var, info = prepare(scene_name)
     max_depth = int(info["max_depth"])
     full = np.ones(ref.shape[:2], dtype=bool)
     entries: dict[str, list[dict[str, Any]]] = {}
@@ -248,7 +264,7 @@ def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[s
     if len(entries) < 2:
         print("figure: no MLT method available; skipped")
         return None
-    summary: dict[str, Any] = {"scene": FIGURE_SCENE, "reference": ref_name, "seeds": seeds}
+    summary: dict[str, Any] = {"scene": scene_name, "reference": ref_name, "seeds": seeds}
     for method, rows in entries.items():
         for r in rows:
             r.pop("relmse_lt_pixels", None)
@@ -266,7 +282,7 @@ def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[s
         }
     bdpt = summary["bdpt"]
     line = (
-        f"figure ({FIGURE_SCENE}, {seeds} seeds): BDPT {bdpt['count']} in "
+        f"figure ({scene_name}, {seeds} seeds): BDPT {bdpt['count']} in "
         f"{bdpt['seconds']:.2f} s, relMSE {bdpt['relmse']:.3e}"
     )
     for method in entries:
@@ -307,10 +323,10 @@ def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[s
         ax.set_title(title, fontsize=9)
         ax.axis("off")
     fig.suptitle(
-        f"Veach's door at equal time: {ref.shape[1]}x{ref.shape[0]}, max_depth {max_depth}; "
+        f"{scene_name} at equal time: {ref.shape[1]}x{ref.shape[0]}, max_depth {max_depth}; "
         f"relMSE: mean of {seeds} seeds"
     )
-    path = RESULTS / f"bench_mlt_{FIGURE_SCENE}{suffix}.png"
+    path = RESULTS / f"{stem}_{scene_name}{suffix}.png"
     RESULTS.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -319,11 +335,11 @@ def figure(spp: int, skipped: dict[str, str], suffix: str, seeds: int) -> dict[s
     return summary
 
 
-def plot(summary: dict[str, Any], path: Path) -> None:
+def plot(summary: dict[str, Any], path: Path, methods: tuple[str, ...] = METHODS) -> None:
     panels, colours = {}, {}
     for name, entry in summary["scenes"].items():
         curves = {}
-        for i, method in enumerate(METHODS):
+        for i, method in enumerate(methods):
             runs = [r for r in entry["curves"] if r["method"] == method]
             if runs:
                 calibrated = runs[0]["budget_by"] != "time_limit"
@@ -337,6 +353,110 @@ def plot(summary: dict[str, Any], path: Path) -> None:
         ylabel=f"relMSE (reference noise removed; mean of {summary['seeds']} seeds)",
         colours=colours,
     )
+
+
+def scene_study(
+    name: str,
+    methods: list[str],
+    budgets: list[float],
+    seeds: int,
+    skipped: dict[str, str],
+    ratios: list[tuple[str, str]] = RATIOS,
+) -> dict[str, Any]:
+    """Every method on scene ``name`` at every budget, ``seeds`` renders each: the runs, the
+    curves (mean relMSE and seconds per budget) and the equal-time efficiency ratios at the
+    longest budget. Methods this build lacks are added to ``skipped`` (method -> why)."""
+    ref_name, scene, ref, ref_var, info = prepare(name)
+    max_depth = int(info["max_depth"])
+    full = np.ones(ref.shape[:2], dtype=bool)
+    calibrations: dict[str, dict[str, Any]] = {}
+    runs: list[dict[str, Any]] = []
+    print(f"{name}:")
+    curves: list[dict[str, Any]] = []
+    for method in methods:
+        if method in skipped:
+            continue
+        for i, budget in enumerate(budgets):
+            rows = []
+            for k in range(seeds):
+                try:
+                    img, secs, stats, how = render_budget(
+                        scene, method, budget, max_depth, 100 + i + 1000 * k, calibrations
+                    )
+                except Unavailable as err:
+                    skipped[method] = str(err)
+                    print(f"  skipping {method!r}: not available in this build ({err})")
+                    break
+                r = {"budget": budget, "seed_index": k, **how}
+                r.update(record(scene, method, secs, stats))
+                r.update(errors(img, ref, ref_var, full))
+                r.pop("relmse_lt_pixels")  # the whole image here: the same as relmse
+                r["delta_e2000"] = metrics.delta_e2000(img, ref)["mean"]
+                r["efficiency"] = 1.0 / (r["relmse"] * r["seconds"])
+                runs.append(r)
+                rows.append(r)
+            if method in skipped:
+                break
+            rel = np.array([r["relmse"] for r in rows])
+            curve = {
+                "method": method,
+                "budget": budget,
+                "budget_by": rows[0]["budget_by"],
+                "seeds": len(rows),
+                "seconds": float(np.mean([r["seconds"] for r in rows])),
+                "relmse": float(rel.mean()),
+                "relmse_stderr": (
+                    float(rel.std(ddof=1) / np.sqrt(len(rel))) if len(rel) > 1 else None
+                ),
+            }
+            curve["delta_e2000"] = float(np.mean([r["delta_e2000"] for r in rows]))
+            curve["efficiency"] = 1.0 / (curve["relmse"] * curve["seconds"])
+            curves.append(curve)
+            st = rows[0]["stats"]
+            extra = (
+                f" acc {st['acceptance_rate']:.2f} b {st['b']:.4g}"
+                if "acceptance_rate" in st and "b" in st
+                else ""
+            )
+            spread = "" if len(rows) < 2 else f" +- {curve['relmse_stderr']:.1e}"
+            print(
+                f"  {method:>8} {budget:5.2f} s -> {curve['seconds']:6.2f} s "
+                f"{count_label(rows[0]):>24} relMSE {curve['relmse']:.3e}{spread} "
+                f"dE {curve['delta_e2000']:.2f} "
+                f"({len(rows)} seeds){extra}",
+                flush=True,
+            )
+
+    top = {c["method"]: c for c in curves if c["budget"] == max(budgets)}
+    return {
+        "reference": ref_name,
+        "reference_spp": info.get("spp"),
+        "max_depth": max_depth,
+        "calibrations": calibrations,
+        "runs": runs,
+        "curves": curves,
+        "equal_time_efficiency_ratios_at_budget": max(budgets),
+        "equal_time_efficiency_ratios": efficiency_ratios(top, ratios),
+    }
+
+
+def print_ratios(summary: dict[str, Any], budget: float, ratios: list[tuple[str, str]]) -> None:
+    """The equal-time efficiency ratios of every scene of ``summary``, as a table."""
+    names = list(summary["scenes"])
+    keys = [f"{a} / {b}" for a, b in ratios]
+    keys = [
+        k
+        for k in keys
+        if any(k in summary["scenes"][n]["equal_time_efficiency_ratios"] for n in names)
+    ]
+    print(
+        f"\nefficiency ratios at {budget} s, 1 / (relMSE * seconds): "
+        "time to equal relMSE, > 1: the first is faster"
+    )
+    print(f"{'':>16}" + "".join(f"{n:>11}" for n in names))
+    for k in keys:
+        cells = [summary["scenes"][n]["equal_time_efficiency_ratios"].get(k) for n in names]
+        print(f"{k:>16}" + "".join(f"{'-' if c is None else f'x{c:.2f}':>11}" for c in cells))
 
 
 def main() -> None:
@@ -369,92 +489,9 @@ def main() -> None:
         "scenes": {},
     }
     for name in args.scenes.split(","):
-        ref_name, scene, ref, ref_var, info = prepare(name)
-        max_depth = int(info["max_depth"])
-        full = np.ones(ref.shape[:2], dtype=bool)
-        calibrations: dict[str, dict[str, Any]] = {}
-        runs: list[dict[str, Any]] = []
-        print(f"{name}:")
-        curves: list[dict[str, Any]] = []
-        for method in methods:
-            if method in skipped:
-                continue
-            for i, budget in enumerate(budgets):
-                rows = []
-                for k in range(args.seeds):
-                    try:
-                        img, secs, stats, how = render_budget(
-                            scene, method, budget, max_depth, 100 + i + 1000 * k, calibrations
-                        )
-                    except Unavailable as err:
-                        skipped[method] = str(err)
-                        print(f"  skipping {method!r}: not available in this build ({err})")
-                        break
-                    r = {"budget": budget, "seed_index": k, **how}
-                    r.update(record(scene, method, secs, stats))
-                    r.update(errors(img, ref, ref_var, full))
-                    r.pop("relmse_lt_pixels")  # the whole image here: the same as relmse
-                    r["efficiency"] = 1.0 / (r["relmse"] * r["seconds"])
-                    runs.append(r)
-                    rows.append(r)
-                if method in skipped:
-                    break
-                rel = np.array([r["relmse"] for r in rows])
-                curve = {
-                    "method": method,
-                    "budget": budget,
-                    "budget_by": rows[0]["budget_by"],
-                    "seeds": len(rows),
-                    "seconds": float(np.mean([r["seconds"] for r in rows])),
-                    "relmse": float(rel.mean()),
-                    "relmse_stderr": (
-                        float(rel.std(ddof=1) / np.sqrt(len(rel))) if len(rel) > 1 else None
-                    ),
-                }
-                curve["efficiency"] = 1.0 / (curve["relmse"] * curve["seconds"])
-                curves.append(curve)
-                st = rows[0]["stats"]
-                extra = (
-                    f" acc {st['acceptance_rate']:.2f} b {st['b']:.4g}"
-                    if "acceptance_rate" in st and "b" in st
-                    else ""
-                )
-                spread = "" if len(rows) < 2 else f" +- {curve['relmse_stderr']:.1e}"
-                print(
-                    f"  {method:>8} {budget:5.2f} s -> {curve['seconds']:6.2f} s "
-                    f"{count_label(rows[0]):>24} relMSE {curve['relmse']:.3e}{spread} "
-                    f"({len(rows)} seeds){extra}",
-                    flush=True,
-                )
+        summary["scenes"][name] = scene_study(name, methods, budgets, args.seeds, skipped)
 
-        top = {c["method"]: c for c in curves if c["budget"] == max(budgets)}
-        ratios = efficiency_ratios(top, RATIOS)
-        summary["scenes"][name] = {
-            "reference": ref_name,
-            "reference_spp": info.get("spp"),
-            "max_depth": max_depth,
-            "calibrations": calibrations,
-            "runs": runs,
-            "curves": curves,
-            "equal_time_efficiency_ratios_at_budget": max(budgets),
-            "equal_time_efficiency_ratios": ratios,
-        }
-
-    names = list(summary["scenes"])
-    keys = [f"{a} / {b}" for a, b in RATIOS]
-    keys = [
-        k
-        for k in keys
-        if any(k in summary["scenes"][n]["equal_time_efficiency_ratios"] for n in names)
-    ]
-    print(
-        f"\nefficiency ratios at {max(budgets)} s, 1 / (relMSE * seconds): "
-        "time to equal relMSE, > 1: the first is faster"
-    )
-    print(f"{'':>16}" + "".join(f"{n:>11}" for n in names))
-    for k in keys:
-        cells = [summary["scenes"][n]["equal_time_efficiency_ratios"].get(k) for n in names]
-        print(f"{k:>16}" + "".join(f"{'-' if c is None else f'x{c:.2f}':>11}" for c in cells))
+    print_ratios(summary, max(budgets), RATIOS)
     for method, why in skipped.items():
         print(f"skipped {method!r}: {why}")
 
