@@ -35,7 +35,7 @@ cpp-test: setup
 	ctest --test-dir build/cpp-tests --output-on-failure
 
 # The checks left out of make test for its time (marker `long`: more estimators on the
-# material scenes against their Mitsuba references). About 5 minutes.
+# material scenes against their Mitsuba references). About 11 minutes.
 test-long: install
 	$(PY) -m pytest -q --long -m long
 

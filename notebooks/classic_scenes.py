@@ -16,7 +16,7 @@
 #
 # Three scenes from Veach's thesis, each against its Mitsuba 3 reference (shipped with the
 # package): the multiple-importance-sampling plates (fig. 9.2), the room lit indirectly by a
-# shaded lamp with a glass egg (fig. 10.3) and the door ajar with glossy objects (fig. 11.1).
+# shaded lamp with a glass egg (ch. 10) and the door ajar with glossy objects (ch. 11).
 # `benchmarks/bench_scenes.py` measures every method on them at several budgets; here one
 # budget each.
 
@@ -73,7 +73,7 @@ for strategies in ("bsdf", "light", "mis"):
 show([*panels, ("Mitsuba reference", mis_ref)], mis_ref)
 
 # %% [markdown]
-# ## Light from a hidden lamp (Veach's figure 10.3)
+# ## Light from a hidden lamp (Veach's thesis, ch. 10)
 #
 # The bulb faces the ceiling inside a glossy shade: everything the camera sees is lit
 # indirectly, and the egg's caustic on the table is the ceiling's light focused by glass. A
@@ -95,7 +95,7 @@ for name, img in (("path", path), ("BDPT", bdpt)):
 show([*panels, ("Mitsuba reference", bidir_ref)], bidir_ref)
 
 # %% [markdown]
-# ## The glossy door (Veach's figure 11.1)
+# ## The glossy door (Veach's thesis, ch. 11)
 #
 # The dark room is lit only through the gap of a door ajar, and its copper sphere, frosted
 # glass sphere and plastic block reflect that light glossily. BDPT at 40 samples per pixel

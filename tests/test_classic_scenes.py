@@ -106,6 +106,8 @@ def test_strategies_checked_and_only_for_path_and_bdpt() -> None:
             dualight.render(scene, method, spp=1, strategies="bsdf", progress=False)
     image = dualight.render(scene, "bdpt", spp=1, strategies="light", progress=False)
     assert image.stats["strategies"] == "light"
+    image = dualight.render(scene, "path", spp=1, strategies="bsdf", progress=False)
+    assert "light_samples" in image.stats["skipped"]
 
 
 @pytest.mark.parametrize("method", ["path", "bdpt"])

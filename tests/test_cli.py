@@ -75,6 +75,14 @@ def test_render_a_builtin_scene(tmp_path: Path, how: str) -> None:
     assert image.stats["method"] == "path" and image.stats["spp"] == 1
 
 
+@pytest.mark.parametrize("name", ["veach_mis", "veach_bidir", "door_glossy"])
+def test_render_veachs_scenes_with_one_strategy(tmp_path: Path, name: str) -> None:
+    out = tmp_path / "a.exr"
+    assert main(["render", name, *SMALL, "--strategies", "light", "-o", str(out)]) == 0
+    image = dualight.Image.load(out)
+    assert image.stats["scene"] == name and image.stats["strategies"] == "light"
+
+
 def test_render_a_mitsuba_file_with_its_settings(tmp_path: Path) -> None:
     xml = dualight.save_mitsuba_xml(
         scenes.cornell_box(resolution=(12, 8)), tmp_path / "cbox.xml", spp=3, max_depth=4

@@ -13,7 +13,7 @@ from dualight import __version__, scenes
 from dualight._cli import HelpFormatter, add_subcommand, framing_camera, point, resolution
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings
-from dualight.methods import METHODS, Sampler
+from dualight.methods import METHODS, Sampler, Strategies
 from dualight.render import render
 from dualight.scene import Camera, Scene
 
@@ -22,6 +22,9 @@ SCENES: dict[str, Callable[[tuple[int, int]], Scene]] = {
     "furnace": lambda res: scenes.furnace(resolution=res),
     "caustics": lambda res: scenes.cornell_box(resolution=res, variant="caustics"),
     "door": lambda res: scenes.door_ajar(resolution=res),
+    "door_glossy": lambda res: scenes.door_ajar(resolution=res, variant="glossy"),
+    "veach_mis": lambda res: scenes.veach_mis(resolution=res),
+    "veach_bidir": lambda res: scenes.veach_bidir(resolution=res),
 }
 SCENE_FILES = (".xml", ".obj")  # Mitsuba XML, Wavefront OBJ
 # render's defaults on the command line, where neither an option nor a scene file sets them.
@@ -86,6 +89,7 @@ def _render_command(args: argparse.Namespace) -> int:
     scene, label, settings = _scene(args)
     given = {k: getattr(args, k) for k in ("method", "spp", "max_depth", "rr_depth", "seed")}
     given["sampler"] = args.sampler
+    given["strategies"] = args.strategies
     keywords = {**DEFAULTS, **settings, **{k: v for k, v in given.items() if v is not None}}
     image = render(
         scene,
@@ -131,6 +135,12 @@ def _add_render_parser(sub: Any) -> None:
     p.add_argument("--seed", type=int, help=f"default: 0, {file_note} sampler's")
     p.add_argument(
         "--sampler", choices=get_args(Sampler), help=f"default: independent, {file_note}"
+    )
+    p.add_argument(
+        "--strategies",
+        choices=get_args(Strategies),
+        help="path and bdpt: MIS of every sampling strategy, or BSDF or light sampling alone; "
+        "default: mis",
     )
     p.add_argument("--threads", type=int, help="default: every core")
     p.add_argument(

@@ -1,7 +1,7 @@
 """The classic scenes of Veach's thesis (Veach 1997, "Robust Monte Carlo Methods for Light
 Transport Simulation"), built for :mod:`dualight.scenes`: the multiple-importance-sampling
-plates (fig. 9.2), the bidirectional room lit indirectly (fig. 10.3) and the glossy objects of
-the door scene (fig. 11.1). The geometry is ours, to the figures' descriptions; the settings are
+plates (fig. 9.2), the bidirectional room lit indirectly (ch. 10) and the glossy objects of
+the door scene (ch. 11). The geometry is ours, to the figures' descriptions; the settings are
 in each function's docstring."""
 
 from __future__ import annotations
@@ -161,7 +161,7 @@ def veach_bidir(
     light_scale: float = 1.0,
     ior: float = 1.5,
 ) -> Scene:
-    """Veach's bidirectional scene (thesis fig. 10.3; Veach and Guibas 1995): a room lit only
+    """Veach's bidirectional scene (thesis ch. 10; Veach and Guibas 1995): a room lit only
     indirectly, by a lamp whose light first hits the ceiling or its glossy shade, with a glass
     egg on a table.
 

@@ -72,13 +72,16 @@ def _scene_features(scene: Scene, camera: Camera | None = None) -> dict[str, Any
     return features
 
 
-def _skipped(stats: dict[str, Any], skip: bool, scene: Scene, method: str) -> dict[str, Any]:
+def _skipped(
+    stats: dict[str, Any], skip: bool, scene: Scene, method: str, strategies: str = "mis"
+) -> dict[str, Any]:
     """What a render left out, from its counters: shadow rays known unneeded (convex
     enclosure), connections that could not carry light (a specular end, a zero BSDF or
     emission term, a point outside the view), mutations the scene cannot use, and BDPT's
     strategies that cannot find light in a scene lit only by delta lights (point, spot and
     directional: no path hits one, so s = 0 finds nothing; BDPT and PSSMLT do not evaluate
-    them, MMLT does not offer them)."""
+    them, MMLT does not offer them), and the path tracer's shadow rays of light samples that
+    ``strategies="bsdf"`` weights 0."""
     out: dict[str, Any] = {
         "enabled": skip,
         "shadow_rays": int(stats.get("skipped_shadow_rays", 0)),
@@ -89,6 +92,8 @@ def _skipped(stats: dict[str, Any], skip: bool, scene: Scene, method: str) -> di
     bidirectional = method in ("bdpt", "pssmlt") or (method == "mmlt" and skip)
     if bidirectional and not scene._compile().has_hittable_emitter:
         out["strategies"] = ["s = 0: every emitter is a delta light (no path hits one)"]
+    if method == "path" and strategies == "bsdf":
+        out["light_samples"] = "weighted 0 where BSDF sampling can find the light: no shadow ray"
     return out
 
 
@@ -369,7 +374,7 @@ def render(
         # What the scene asks for: without mirrors or glass no connection is skipped as specular.
         stats["specular_surfaces"] = scene.has_specular
         stats["scene"] = _scene_features(scene, cam)
-        stats["skipped"] = _skipped(stats, skip, scene, method)
+        stats["skipped"] = _skipped(stats, skip, scene, method, strategies)
         if method != "path":
             stats["light_paths"] = result["light_paths"]
         if method == "bdpt":
