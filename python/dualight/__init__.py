@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from dualight import emitters, io, materials, metrics, radiosity, scenes, textures
+from dualight import emitters, guiding, io, materials, metrics, radiosity, scenes, textures
 from dualight.emitters import (
     ConstantEnvironment,
     DirectionalLight,
@@ -23,6 +23,7 @@ from dualight.emitters import (
     PointLight,
     SpotLight,
 )
+from dualight.guiding import train_guide
 from dualight.image import Image
 from dualight.io import load_mitsuba_xml, load_obj, read_mitsuba_settings, save_mitsuba_xml
 from dualight.materials import (
@@ -74,6 +75,7 @@ __all__ = [
     "TwoSided",
     "__version__",
     "emitters",
+    "guiding",
     "io",
     "load_mitsuba_xml",
     "load_obj",
@@ -85,4 +87,5 @@ __all__ = [
     "save_mitsuba_xml",
     "scenes",
     "textures",
+    "train_guide",
 ]

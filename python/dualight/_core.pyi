@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'Guide', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'train_importance_guide', 'train_radiance_guide', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -410,8 +410,8 @@ class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ...) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -425,6 +425,13 @@ class PathTracerOptions:
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
         strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
+        guiding: Train a guide first, then sample directions from it (guiding/).
+        guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        guide_rho: A directional node holding more than this share of its leaf's value is split.
+        guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
     def __repr__(self) -> str:
         ...
@@ -432,6 +439,41 @@ class PathTracerOptions:
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
+        """
+    @property
+    def guide_bsdf_fraction(self) -> float:
+        """
+        Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_learn_bsdf_fraction(self) -> bool:
+        """
+        Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        """
+    @property
+    def guide_max_records(self) -> int:
+        """
+        Records one training iteration may keep (24 bytes each); training stops before more.
+        """
+    @property
+    def guide_rho(self) -> float:
+        """
+        A directional node holding more than this share of its leaf's value is split.
+        """
+    @property
+    def guide_spatial_threshold(self) -> int:
+        """
+        Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        """
+    @property
+    def guide_training(self) -> float:
+        """
+        Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guiding(self) -> bool:
+        """
+        Train a guide first, then sample directions from it (guiding/).
         """
     @property
     def max_depth(self) -> int:
@@ -527,8 +569,8 @@ class LightTracerOptions:
     """
     Options of the light tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the light tracer. Keywords only: an option left out keeps its default above (the C++ LightTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -541,6 +583,13 @@ class LightTracerOptions:
         skip_unneeded: Skip work the scene makes pointless; False does it all.
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
+        guiding: Train a guide first, then sample directions from it (guiding/).
+        guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        guide_rho: A directional node holding more than this share of its leaf's value is split.
+        guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
     def __repr__(self) -> str:
         ...
@@ -548,6 +597,41 @@ class LightTracerOptions:
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
+        """
+    @property
+    def guide_bsdf_fraction(self) -> float:
+        """
+        Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_learn_bsdf_fraction(self) -> bool:
+        """
+        Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        """
+    @property
+    def guide_max_records(self) -> int:
+        """
+        Records one training iteration may keep (24 bytes each); training stops before more.
+        """
+    @property
+    def guide_rho(self) -> float:
+        """
+        A directional node holding more than this share of its leaf's value is split.
+        """
+    @property
+    def guide_spatial_threshold(self) -> int:
+        """
+        Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        """
+    @property
+    def guide_training(self) -> float:
+        """
+        Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guiding(self) -> bool:
+        """
+        Train a guide first, then sample directions from it (guiding/).
         """
     @property
     def max_depth(self) -> int:
@@ -1271,6 +1355,32 @@ class HierarchicalSolver:
     @property
     def total_rays_skipped(self) -> int:
         ...
+class Guide:
+    """
+    A trained SD-tree guide (guiding/sd_tree.h): a spatial binary tree with a quadtree of directions in each leaf.
+    """
+    def directional(self, x: typing.SupportsFloat | typing.SupportsIndex, y: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        The quadtree at a point: rows (u0, v0, size, density on the unit square); u = (cos theta + 1) / 2, v = phi / (2 pi); solid-angle density = density / (4 pi).
+        """
+    def leaves(self) -> dict:
+        """
+        The spatial leaves: dict(lo, hi, directional_nodes, total, bsdf_fraction).
+        """
+    def pdf(self, points: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], directions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        Solid-angle density of each direction (N, 3) at its point (N, 3); 0 where the leaf learnt nothing.
+        """
+    def sample(self, points: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], u: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        A unit direction per point (N, 3) from u (N, 2) in [0, 1); NaN where the leaf learnt nothing.
+        """
+    @property
+    def empty(self) -> bool:
+        ...
+    @property
+    def stats(self) -> dict:
+        ...
 def cast_random_rays(scene: Scene, camera: PinholeCamera, n_rays: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> dict:
     """
     Embree-only cast of incoherent rays (no shading): the ray-tracing limit for this scene.
@@ -1348,6 +1458,14 @@ def start_chains(scene: Scene, camera: PinholeCamera, options: MltOptions, progr
 def trace_camera_hits(scene: Scene, camera: PinholeCamera, samples_per_axis: typing.SupportsInt | typing.SupportsIndex = 2, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float32]]:
     """
     Triangle hit by each stratified camera sample, (H x W x S int32, -1 = miss) and its barycentrics.
+    """
+def train_importance_guide(scene: Scene, camera: PinholeCamera, options: LightTracerOptions, progress: typing.Any = None) -> dict:
+    """
+    Trains the importance guide the light tracer would; returns dict(guide, keyboard_interrupt).
+    """
+def train_radiance_guide(scene: Scene, camera: PinholeCamera, options: PathTracerOptions, progress: typing.Any = None) -> dict:
+    """
+    Trains the radiance guide the path tracer would (options.guiding need not be set); returns dict(guide, keyboard_interrupt).
     """
 def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], metadata: collections.abc.Mapping[str, str] = {}) -> None:
     """

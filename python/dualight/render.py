@@ -59,6 +59,27 @@ def _only_for(keyword: str, unset: bool, estimator: Estimator, method: str) -> N
         raise ValueError(f"{keyword} applies to method {takers} only, not {method!r}")
 
 
+def _guiding_fields(
+    guiding: bool | Mapping[str, Any], estimator: Estimator, method: str
+) -> dict[str, Any]:
+    """The core's ``guide_*`` option fields of ``render(guiding=...)``: ``True``, ``False`` or a
+    dict of the guide's options without their ``guide_`` prefix."""
+    if guiding is False:
+        return {}
+    if guiding is not True and not isinstance(guiding, Mapping):
+        raise TypeError(f"guiding must be True, False or a dict of guide options, got {guiding!r}")
+    if not estimator.takes("guiding"):
+        takers = ", ".join(repr(n) for n, e in ESTIMATORS.items() if e.takes("guiding"))
+        raise ValueError(f"guiding applies to method {takers} only, not {method!r}")
+    fields: dict[str, Any] = {"guiding": True}
+    valid = [f[len("guide_") :] for f in estimator.options._fields if f.startswith("guide_")]
+    for key, value in guiding.items() if isinstance(guiding, Mapping) else ():
+        if key not in valid:
+            raise TypeError(f"unknown guiding option {key!r}; valid: {', '.join(valid)}")
+        fields["guide_" + key] = _plain(value)
+    return fields
+
+
 def _scene_features(scene: Scene, camera: Camera | None = None) -> dict[str, Any]:
     """``scene.features`` plus what depends on the camera: ``camera_enclosed`` (its origin
     strictly inside the convex enclosure) and ``emitters_facing_camera`` (emitter triangles
@@ -177,6 +198,7 @@ def render(
     mlt: Mapping[str, Any] | None = None,
     skip: bool = _DEFAULT.skip_unneeded,
     executor: Any = None,
+    guiding: bool | Mapping[str, Any] = False,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -300,6 +322,21 @@ def render(
         ``stats`` adds ``tasks``, ``workers``, ``task_seconds`` and ``task_cpu_seconds``
         (and ``chains`` and ``start_up_seconds`` for the Metropolis methods).
 
+    guiding:
+        ``"path"`` and ``"light"``: path guiding (Müller, Gross and Novák 2017). ``True``
+        first trains a guide in iterations of 1, 2, 4, ... samples per pixel, each guided by
+        the last: for ``"path"`` the radiance that camera paths found, for ``"light"`` the
+        importance that light paths carried to the camera (where a particle will be seen).
+        The image is then rendered sampling each direction from the guide or the BSDF (one-
+        sample MIS), so it stays unbiased. A dict sets the guide's options: ``training``
+        (share of the budget: of ``spp``, added on top so the image has ``spp`` samples per
+        pixel, or of ``time_limit``, counted in it; default 0.25), ``bsdf_fraction``
+        (probability of sampling the BSDF, 0.5), ``spatial_threshold`` (records a spatial
+        leaf may hold at 1 spp, 1000), ``rho`` (directional subdivision, 0.01) and
+        ``max_records``. ``image.stats["guiding"]`` reports the iterations, training and
+        rendering seconds, the trees' sizes and the BSDF fraction; ``seconds`` includes the
+        training. :func:`dualight.train_guide` returns the guide itself, to draw.
+
     Returns
     -------
     Image
@@ -351,6 +388,7 @@ def render(
     ):
         if estimator.takes(keyword):
             fields[keyword] = value
+    fields.update(_guiding_fields(guiding, estimator, method))
     keywords = estimator.keywords(fields, mlt)
     options = estimator.options(**keywords)  # the core checks every value, before any work
     if executor is not None:
@@ -362,6 +400,10 @@ def render(
             )
         if strategy_images:
             raise ValueError("strategy_images is not supported with executor= yet")
+        if guiding is not False:
+            raise ValueError(
+                "guiding is not supported with executor= yet (each task would train its own guide)"
+            )
     scene.validate_for_rendering(camera)
     cam = camera or scene.camera
     assert cam is not None

@@ -13,6 +13,7 @@ void bind_pathspace(py::module_& m);
 void bind_mlt(py::module_& m);
 void bind_chain_split(py::module_& m);
 void bind_radiosity(py::module_& m);
+void bind_guiding(py::module_& m);
 }  // namespace dualight::bindings
 
 PYBIND11_MODULE(_core, m) {
@@ -26,4 +27,5 @@ PYBIND11_MODULE(_core, m) {
   dualight::bindings::bind_mlt(m);
   dualight::bindings::bind_chain_split(m);
   dualight::bindings::bind_radiosity(m);
+  dualight::bindings::bind_guiding(m);
 }

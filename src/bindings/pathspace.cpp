@@ -30,8 +30,9 @@ void bind_pathspace(py::module_& m) {
   add_pixel_fields(path, "Samples per pixel; 0 = until time_limit.");
   path.field("strategies", &PathTracerOptions::strategies,
              "mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone "
-             "(the other only where it alone can find the light).")
-      .bind();
+             "(the other only where it alone can find the light).");
+  add_guiding_fields(path);
+  path.bind();
 
   m.def(
       "render_path",
@@ -54,6 +55,7 @@ void bind_pathspace(py::module_& m) {
 
   OptionsClass<LightTracerOptions> light(m, "LightTracerOptions", "Options of the light tracer.");
   add_pixel_fields(light, "Particles per pixel (spp x pixels particles in all); 0 = until time_limit.");
+  add_guiding_fields(light);
   light.bind();
 
   OptionsClass<BdptOptions> bdpt(m, "BdptOptions", "Options of bidirectional path tracing.");

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include "geometry/camera.h"
+#include "guiding/guiding_options.h"
 #include "pathspace/mlt.h"
 #include "pathspace/mlt_result.h"
 #include "pathspace/pssmlt.h"
@@ -33,6 +34,22 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
   d["interrupted"] = s.interrupted;
   d["time_limited"] = s.time_limited;
+  if (s.guiding.used) {
+    const GuidingStats& g = s.guiding;
+    py::dict guiding;
+    guiding["iterations"] = g.iterations;
+    guiding["training_spp"] = g.training_spp;
+    guiding["records"] = g.records;
+    guiding["spatial_leaves"] = g.spatial_leaves;
+    guiding["directional_nodes"] = g.directional_nodes;
+    guiding["training_seconds"] = g.training_seconds;
+    guiding["rendering_seconds"] = g.rendering_seconds;
+    guiding["bsdf_fraction"] = g.bsdf_fraction;
+    guiding["bsdf_fraction_min"] = g.bsdf_fraction_min;
+    guiding["bsdf_fraction_max"] = g.bsdf_fraction_max;
+    guiding["stopped_by_records"] = g.stopped_by_records;
+    d["guiding"] = guiding;
+  }
   return d;
 }
 
@@ -107,6 +124,30 @@ void add_pixel_fields(OptionsClass<T>& o, const char* spp_doc) {
   o.field("sampler", &EstimatorOptions::sampler, "Where the random numbers come from (core/sampler.h).")
       .field("first_sample", &EstimatorOptions::first_sample,
              "First sample index rendered (one task of a split render; see Film).");
+}
+
+// The fields of an estimator that can be guided (guiding/guiding_options.h).
+template <class T>
+void add_guiding_fields(OptionsClass<T>& o) {
+  o.field("guiding", &GuidingOptions::guiding, "Train a guide first, then sample directions from it (guiding/).")
+      .field("guide_training", &GuidingOptions::guide_training,
+             "Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; "
+             "with spp the image still has spp samples per pixel.",
+             strictly_within(0.0, 1.0))
+      .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
+             "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "
+             "guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.")
+      .field("guide_bsdf_fraction", &GuidingOptions::guide_bsdf_fraction,
+             "Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.",
+             within(0.0, 1.0))
+      .field("guide_spatial_threshold", &GuidingOptions::guide_spatial_threshold,
+             "Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).", at_least(1))
+      .field("guide_rho", &GuidingOptions::guide_rho,
+             "A directional node holding more than this share of its leaf's value is split.",
+             strictly_within(0.0, 1.0))
+      .field("guide_max_records", &GuidingOptions::guide_max_records,
+             "Records one training iteration may keep (24 bytes each); training stops before more.",
+             up_to(1.0, 1u << 28, "(6 GB of records)"));
 }
 
 inline void check_emitters(const Scene& scene) {

@@ -7,6 +7,8 @@
 #include "core/parallel.h"
 #include "core/stopwatch.h"
 #include "film/splat_list.h"
+#include "guiding/guide_training.h"
+#include "pathspace/mlt_importance.h"
 #include "pathspace/connect.h"
 #include "pathspace/subpath.h"
 
@@ -23,24 +25,66 @@ constexpr uint64_t kChunk = 4096;
 // index is i, so a Sobol sampler stratifies over all particles.
 constexpr uint64_t kParticleStream = 0x9a3f'6c21'0b7d'e584ull;
 
+// The guide of a guided render, and where a training iteration keeps its records. Importance is
+// learnt for each pixel's relative error, not for the image's total: a contribution counts in
+// proportion to `pixel_weight` (the last iteration's image, smoothed, to the power -1/2, as
+// MLT's flattened target, mlt_importance.h). Otherwise the few pixels that see a bright surface
+// directly would draw every particle to it (on the door: the bright room's sliver seen through
+// the gap, not the dark room around it).
+struct ParticleGuiding {
+  WalkGuide walk;
+  RecordCollector* collector = nullptr;
+  const PixelImportance* pixel_weight = nullptr;
+};
+
+// Records of the importance that arrived along each non-Dirac direction a light path sampled at
+// a surface: the camera contributions of the vertices after it over the throughput there
+// (guide_record.h), over the solid-angle density of the direction (pdf_fwd of the next vertex in
+// solid angle again).
+void record_importance(const Path& path, const std::vector<Color>& contribution, GuideRecords& out) {
+  Color after(0.f);  // the contributions of vertices k + 1, k + 2, ...
+  for (size_t k = path.size() - 1; k-- > 1;) {
+    after += contribution[k + 1];
+    const Vertex &v = path[k], &next = path[k + 1];
+    if (v.delta || next.at_infinity || !(next.pdf_fwd > 0.f)) continue;
+    const Vec3 d = next.p - v.p;
+    const float dist2 = dot(d, d);
+    const Vec3 w = d / std::sqrt(dist2);
+    const float pdf_w = next.pdf_fwd * dist2 / std::abs(dot(next.n, w));
+    const float pdf_bsdf = surface_pdf_w(v, v.wo, w, TransportMode::Importance);
+    Color fcos(0.f);  // f |cos| (the shading-normal correction included) where beta is not 0
+    for (int c = 0; c < 3; ++c) {
+      if (v.beta[c] > 0.f) (c == 0 ? fcos.x : c == 1 ? fcos.y : fcos.z) = next.beta[c] / v.beta[c] * pdf_w;
+    }
+    GuideRecord r;
+    if (make_record(v.p, w, after, next.beta, fcos, pdf_bsdf, pdf_w, r)) out.push_back(r);
+  }
+}
+
 template <class Sampler>
 void trace_particle(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt, uint64_t index,
-                    Path& path, SplatList& splats, TraceCounters& counters) {
+                    Path& path, SplatList& splats, TraceCounters& counters, const ParticleGuiding& guiding,
+                    std::vector<Color>& contribution) {
   Sampler sampler(opt.seed, kParticleStream ^ (index >> 32), static_cast<uint32_t>(index));
-  light_subpath(scene, sampler, WalkLimits{opt.max_depth, opt.rr_depth}, path, counters);
+  light_subpath(scene, sampler, WalkLimits{opt.max_depth, opt.rr_depth}, path, counters, guiding.walk);
   splats.begin_path();
-  for (const Vertex& v : path) {
+  const bool recording = guiding.collector != nullptr;
+  if (recording) contribution.assign(path.size(), Color(0.f));
+  for (size_t k = 0; k < path.size(); ++k) {
     Point2 raster{};
-    const Color c = connect_to_camera(scene, camera, v, raster, counters);
+    const Color c = connect_to_camera(scene, camera, path[k], raster, counters);
     if (is_black(c)) continue;
-    splats.add(static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u), c);
+    const uint32_t pixel = static_cast<uint32_t>(raster.v) * camera.width() + static_cast<uint32_t>(raster.u);
+    if (recording) contribution[k] = guiding.pixel_weight != nullptr ? c * (*guiding.pixel_weight)(pixel) : c;
+    splats.add(pixel, c);
   }
   splats.end_path();
+  if (recording && path.size() > 2) record_importance(path, contribution, guiding.collector->local());
 }
 
 template <class Sampler>
 RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt,
-                            Film& film, RenderControl& control) {
+                            Film& film, RenderControl& control, const ParticleGuiding& guiding) {
   const uint64_t pixels = static_cast<uint64_t>(camera.width()) * camera.height();
   const bool unbounded = opt.spp == 0;
   const uint64_t target = unbounded ? 0 : pixels * opt.spp;
@@ -81,10 +125,11 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
       SplatList& splats = chunk_splats[chunk];
       splats.clear();
       Path path;
+      std::vector<Color> contribution;
       TraceCounters local = work.local();
       for (uint64_t i = first; i < last; ++i) {
         if ((i & 255u) == 0 && control.cancelled()) break;
-        trace_particle<Sampler>(scene, camera, opt, i, path, splats, local);
+        trace_particle<Sampler>(scene, camera, opt, i, path, splats, local, guiding, contribution);
         ++chunk_particles[chunk];
       }
       work.add(local);
@@ -114,14 +159,58 @@ RenderStats drive_particles(const Scene& scene, const PinholeCamera& camera, con
   return stats;
 }
 
+RenderStats drive_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
+                        RenderControl& control, Film& film, const ParticleGuiding& guiding) {
+  return with_sampler(options.sampler, [&](auto tag) {
+    return drive_particles<typename decltype(tag)::type>(scene, camera, options, film, control, guiding);
+  });
+}
+
+// Renders the image with the guide of `trained`, then adds the training's stats.
+RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
+                                 RenderControl& control) {
+  const TrainedGuide trained = train_importance_guide(scene, camera, options, control);
+  LightTracerOptions final_options = options;
+  if (options.time_limit > 0.0) {
+    final_options.time_limit = std::max(1e-3, options.time_limit - trained.stats.training_seconds);
+  }
+  RenderResult result{Film(camera.width(), camera.height()), {}};
+  result.stats = drive_light(scene, camera, final_options, control, result.film,
+                             {{trained.tree.get()}, nullptr});
+  add_guiding_stats(result.stats, trained);
+  return result;
+}
+
 }  // namespace
+
+TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& camera,
+                                    const LightTracerOptions& options, RenderControl& control) {
+  PixelImportance pixel_weight;  // uniform until an iteration's image is there
+  return train_guide(scene, options, options, control,
+                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
+                       LightTracerOptions o = options;
+                       o.spp = spp;
+                       o.seed = seed;
+                       o.time_limit = 0.0;
+                       o.first_sample = 0;
+                       Film scratch(camera.width(), camera.height());
+                       const RenderStats s = drive_light(scene, camera, o, control, scratch,
+                                                         {{tree}, &collector, &pixel_weight});
+                       const std::vector<float> mean = scratch.mean();
+                       std::vector<double> luminance(mean.size() / 3);
+                       for (size_t i = 0; i < luminance.size(); ++i) {
+                         luminance[i] = dualight::luminance(Color(mean[3 * i], mean[3 * i + 1], mean[3 * i + 2]));
+                       }
+                       pixel_weight = PixelImportance(luminance, camera.width(), camera.height(), 2, 0.01);
+                       return s;
+                     });
+}
 
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                           RenderControl& control) {
+  if (options.guiding) return render_light_guided(scene, camera, options, control);
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  result.stats = with_sampler(options.sampler, [&](auto tag) {
-    return drive_particles<typename decltype(tag)::type>(scene, camera, options, result.film, control);
-  });
+  result.stats = drive_light(scene, camera, options, control, result.film, {});
   return result;
 }
 

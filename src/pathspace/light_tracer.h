@@ -11,12 +11,20 @@
 #include "core/sampler.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "guiding/guide_training.h"
 #include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
 
-struct LightTracerOptions : EstimatorOptions {};  // spp counts particles per pixel
+// spp counts particles per pixel. With `guiding`, light paths sample directions at surfaces from an
+// importance guide trained first (guiding/sd_tree.h) mixed with BSDF sampling: particles head
+// where the camera will see them [Vorba et al. 2014; Peter and Pietrek 1998].
+struct LightTracerOptions : EstimatorOptions, GuidingOptions {};
+
+// The importance guide render_light trains when options.guiding (its iterations' images are dropped).
+TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& camera,
+                                    const LightTracerOptions& options, RenderControl& control);
 
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                           RenderControl& control);

@@ -11,15 +11,22 @@
 #include "film/film.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "guiding/guide_training.h"
 #include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 #include "pathspace/strategies.h"
 
 namespace dualight {
 
-struct PathTracerOptions : EstimatorOptions {
+// With `guiding`, camera paths sample directions from a radiance guide trained first (an SD-tree,
+// guiding/sd_tree.h) mixed with BSDF sampling [Müller, Gross, Novák 2017].
+struct PathTracerOptions : EstimatorOptions, GuidingOptions {
   Strategies strategies = Strategies::Mis;  // or BSDF sampling or light sampling alone
 };
+
+// The radiance guide render_path trains when options.guiding (its iterations' images are dropped).
+TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
+                                  RenderControl& control);
 
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                          RenderControl& control);

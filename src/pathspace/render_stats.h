@@ -26,6 +26,21 @@ struct TraceCounters {
   }
 };
 
+// What training a guide took and made (guiding/guide_training.h); `used` false for unguided renders.
+struct GuidingStats {
+  bool used = false;
+  int iterations = 0;
+  uint32_t training_spp = 0;      // samples (particles) per pixel of all iterations
+  size_t records = 0;             // records of the last iteration
+  size_t spatial_leaves = 0;
+  size_t directional_nodes = 0;   // over all leaves
+  double training_seconds = 0.0;
+  double rendering_seconds = 0.0;  // the image's own render, after training
+  double bsdf_fraction = 1.0;  // the leaves' mean weighted by records (guiding/sd_tree.h)
+  float bsdf_fraction_min = 1.f, bsdf_fraction_max = 1.f;
+  bool stopped_by_records = false;  // the next iteration would have kept more than guide_max_records
+};
+
 struct RenderStats {
   uint64_t samples = 0;          // camera samples (paths) completed
   uint64_t rays = 0;             // closest-hit and shadow rays traced
@@ -37,6 +52,7 @@ struct RenderStats {
   double seconds = 0.0;
   bool interrupted = false;
   bool time_limited = false;     // stopped by time_limit before reaching spp
+  GuidingStats guiding;
 };
 
 // TraceCounters summed over threads, and the `unoccluded` setting handed to each task's own.

@@ -9,6 +9,8 @@
 #include <limits>
 
 #include "core/frame.h"
+#include "guiding/guided_sampling.h"
+#include "guiding/sd_tree.h"
 #include "pathspace/path.h"
 #include "pathspace/render_stats.h"
 
@@ -17,6 +19,12 @@ namespace dualight {
 struct WalkLimits {
   int max_depth = -1;  // segments; -1 = unbounded
   int rr_depth = 5;
+};
+
+// A guide for a walk's directions (guiding/; null: BSDF sampling alone). Only the walk's own
+// densities (pdf_fwd) follow it.
+struct WalkGuide {
+  const SdTree* tree = nullptr;
 };
 
 // An rr_depth no walk reaches: no Russian roulette (beta stays recomputable from the path, and
@@ -28,9 +36,10 @@ namespace subpath_detail {
 // Extends `path` from its last vertex along `ray`, which was sampled with solid-angle density
 // pdf_w; at most `max_new` vertices are added. A camera subpath (Radiance) whose ray leaves a
 // scene with an environment ends at a vertex at infinity on it (escape_vertex).
-template <class Sampler>
+// kGuided compiles the guide's sampling in (guide.tree may still be null).
+template <bool kGuided = false, class Sampler>
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
-                 int rr_depth, TransportMode mode, Path& path, TraceCounters& counters) {
+                 int rr_depth, TransportMode mode, Path& path, TraceCounters& counters, const WalkGuide& guide = {}) {
   Color throughput(1.f);  // beta without the start's emission, for Russian roulette
   for (size_t added = 0; added < max_new; ++added) {
     SurfaceHit hit;
@@ -53,7 +62,13 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     BsdfSample bs;
     float pdf_rev_w = 0.f;
     const bool sampled = with_bsdf(cur, [&](const Bsdf& b) {
-      if (!sample(b, wo, sampler.next_2d(), mode, bs)) return false;
+      if constexpr (kGuided) {
+        const VertexGuide g = guide.tree != nullptr ? vertex_guide(guide.tree->at(cur.p), b) : VertexGuide{};
+        const float u_select = g.active() ? sampler.next_1d() : 0.f;
+        if (!sample_guided(b, frame, g, wo, u_select, sampler.next_2d(), mode, bs)) return false;
+      } else if (!sample(b, wo, sampler.next_2d(), mode, bs)) {
+        return false;
+      }
       if (!bs.delta) pdf_rev_w = dualight::pdf_w(b, bs.wi, wo, mode);
       return true;
     });
@@ -109,7 +124,7 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
 // A light subpath: a point on an emitter chosen by power, then a direction the emitter samples.
 template <class Sampler>
 void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limits, Path& path,
-                   TraceCounters& counters) {
+                   TraceCounters& counters, const WalkGuide& guide = {}) {
   path.clear();
   const size_t max_vertices = subpath_detail::max_vertices(limits.max_depth, 0);
   if (max_vertices == 0) return;
@@ -119,8 +134,14 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   EmitterDirection d;
   if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, y0.p, y0.uv, sampler.next_2d(), d)) return;
   const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : (y0.at_infinity ? d.origin : y0.p);
-  subpath_detail::random_walk(scene, Ray{origin, d.w}, sampler, d.beta, d.pdf_w,
-                              max_vertices - 1, limits.rr_depth, TransportMode::Importance, path, counters);
+  const Ray ray{origin, d.w};
+  if (guide.tree == nullptr) {
+    subpath_detail::random_walk(scene, ray, sampler, d.beta, d.pdf_w, max_vertices - 1, limits.rr_depth,
+                                TransportMode::Importance, path, counters);
+  } else {
+    subpath_detail::random_walk<true>(scene, ray, sampler, d.beta, d.pdf_w, max_vertices - 1, limits.rr_depth,
+                                      TransportMode::Importance, path, counters, guide);
+  }
 }
 
 }  // namespace dualight

@@ -1,0 +1,120 @@
+// Trains a guide in iterations of doubling samples per pixel [MGN17, sec. 4]: iteration k renders
+// 2^k samples per pixel (on its own seed) guided by the tree of iteration k - 1, and records what
+// its paths carried; the records build iteration k's tree. Training ends when its share of the
+// budget would be exceeded (samples per pixel, or time assuming each iteration takes twice the
+// last), or before an iteration would store more than guide_max_records, or on cancellation.
+// With spp the iterations and the tree are a function of the seed alone, whatever the threads.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "core/render_control.h"
+#include "core/rng.h"
+#include "core/stopwatch.h"
+#include "geometry/scene.h"
+#include "guiding/guiding_options.h"
+#include "guiding/sd_tree.h"
+#include "pathspace/estimator_options.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+// Records gathered by threads, each into its own list.
+class RecordCollector {
+ public:
+  GuideRecords& local() { return lists_.local(); }
+  // Every list, concatenated (their order does not matter: SdTree sorts them).
+  GuideRecords take() {
+    GuideRecords all;
+    size_t n = 0;
+    for (const GuideRecords& l : lists_) n += l.size();
+    all.reserve(n);
+    for (GuideRecords& l : lists_) {
+      all.insert(all.end(), l.begin(), l.end());
+      GuideRecords().swap(l);
+    }
+    return all;
+  }
+
+ private:
+  tbb::enumerable_thread_specific<GuideRecords> lists_;
+};
+
+struct TrainedGuide {
+  std::shared_ptr<const SdTree> tree;  // null when no iteration finished
+  GuidingStats stats;
+  RenderStats work;  // the iterations' rays and samples
+};
+
+// The scene's box, grown a little so every vertex falls inside.
+inline void guide_bounds(const Scene& scene, Vec3& lo, Vec3& hi) {
+  const Vec3 pad = (scene.bounds_max() - scene.bounds_min()) * 1e-3f + Vec3(1e-4f);
+  lo = scene.bounds_min() - pad;
+  hi = scene.bounds_max() + pad;
+}
+
+// run(spp, seed, guide, collector) renders one iteration (guide may be null) and returns its stats.
+template <class RunIteration>
+TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g,
+                         RenderControl& control, const RunIteration& run) {
+  TrainedGuide out;
+  const Stopwatch elapsed;
+  const double spp_budget = est.spp > 0 ? std::floor(g.guide_training * est.spp) : 0.0;
+  const double time_budget = est.time_limit > 0.0 ? g.guide_training * est.time_limit : 0.0;
+  Vec3 lo, hi;
+  guide_bounds(scene, lo, hi);
+  uint32_t spp = 1, spp_done = 0;
+  double last_seconds = 0.0;
+  size_t last_records = 0;
+  for (int k = 0;; ++k, spp *= 2) {
+    if (est.spp > 0 && spp_done + spp > spp_budget) break;
+    if (time_budget > 0.0 && elapsed() + 2.0 * last_seconds > time_budget) break;
+    if (2.0 * static_cast<double>(last_records) > g.guide_max_records) {
+      out.stats.stopped_by_records = true;
+      break;
+    }
+    if (control.cancelled() || spp > (1u << 20)) break;
+    const double start = elapsed();
+    RecordCollector collector;
+    const RenderStats s = run(spp, hash_combine(est.seed, 0x67756964ull + static_cast<uint64_t>(k)), out.tree.get(),
+                              collector);
+    out.work.rays += s.rays;
+    if (s.interrupted || control.cancelled()) break;
+    GuideRecords records = collector.take();
+    last_records = records.size();
+    SdTreeSettings settings;
+    settings.spatial_threshold = static_cast<uint32_t>(
+        std::min(4.0e9, g.guide_spatial_threshold * std::sqrt(static_cast<double>(spp))));
+    settings.rho = g.guide_rho;
+    settings.learn_bsdf_fraction = g.guide_learn_bsdf_fraction;
+    settings.bsdf_fraction = g.guide_bsdf_fraction;
+    out.tree = std::make_shared<const SdTree>(records, lo, hi, settings);
+    spp_done += spp;
+    last_seconds = elapsed() - start;
+    out.stats.iterations = k + 1;
+    out.stats.training_spp = spp_done;
+    out.stats.records = last_records;
+  }
+  out.stats.training_seconds = elapsed();
+  if (out.tree) {
+    out.stats.spatial_leaves = out.tree->leaves();
+    out.stats.directional_nodes = out.tree->directional_nodes();
+    out.tree->bsdf_fractions(out.stats.bsdf_fraction, out.stats.bsdf_fraction_min, out.stats.bsdf_fraction_max);
+  }
+  return out;
+}
+
+// The image's stats with the training's: its time and rays count in the render's, as an
+// equal-time comparison needs.
+inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {
+  stats.guiding = trained.stats;
+  stats.guiding.used = true;
+  stats.guiding.rendering_seconds = stats.seconds;
+  stats.seconds += trained.stats.training_seconds;
+  stats.rays += trained.work.rays;
+}
+
+}  // namespace dualight

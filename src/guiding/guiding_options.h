@@ -1,0 +1,27 @@
+// What an estimator that can be guided is told about its guide (guide_training.h).
+#pragma once
+#include <cstdint>
+#include <stdexcept>
+
+namespace dualight {
+
+struct GuidingOptions {
+  bool guiding = false;
+  // Share of the budget (samples per pixel, or time_limit) spent training, in iterations of
+  // doubling samples per pixel (1, 2, 4, ...); the image is rendered with the last guide. With
+  // spp, training adds its share on top: the image has spp samples per pixel.
+  float guide_training = 0.25f;
+  // Probability of sampling the BSDF instead of the guide (one-sample MIS, guided_sampling.h):
+  // learnt per spatial leaf, at least guide_bsdf_fraction (sd_tree.h), or guide_bsdf_fraction
+  // everywhere.
+  bool guide_learn_bsdf_fraction = true;
+  float guide_bsdf_fraction = 0.5f;
+  // Records a spatial leaf may hold in an iteration of 1 sample per pixel; the bound grows with
+  // the square root of the iteration's samples per pixel [MGN17, sec. 3.3].
+  uint32_t guide_spatial_threshold = 1000;
+  float guide_rho = 0.01f;  // directional subdivision: a node with more of its leaf's value is split
+  // Records one training iteration may keep (24 bytes each): training stops before one would need more.
+  uint32_t guide_max_records = 1u << 23;
+};
+
+}  // namespace dualight

@@ -1,0 +1,218 @@
+"""Path guiding (issue 22): the SD-tree guides' samples against their densities, guided renders
+deterministic for a seed whatever the thread count, their stats, Ctrl-C during training, and bad
+input. Guided renders against the Mitsuba references (with negative controls) are rows of
+test_pathspace_vs_mitsuba.py (``*_guided``)."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import threading
+import time
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+import dualight
+from chi2 import chi2_sf, pearson, sidak
+from dualight import scenes
+
+ALPHA = 0.01
+LEAVES_TESTED = 3
+
+
+@pytest.fixture(scope="module")
+def cornell() -> dualight.Scene:
+    return scenes.cornell_box(resolution=(32, 32))
+
+
+@pytest.fixture(scope="module")
+def door() -> dualight.Scene:
+    return scenes.door_ajar(resolution=(32, 32))
+
+
+def _chi2_of_leaf(
+    guide, point: np.ndarray, n: int, rng: np.random.Generator
+) -> tuple[float, int, float]:
+    """Pearson's statistic of n samples at `point` over the leaf's own quadtree cells (each
+    expects n times its density times its area on the square)."""
+    cells = guide.directional(*point)
+    d = guide.sample(
+        np.repeat(point[None].astype(np.float32), n, 0), rng.random((n, 2), dtype=np.float32)
+    )
+    assert np.isfinite(d).all()
+    u = (d[:, 2] + 1) / 2
+    v = (np.arctan2(d[:, 1], d[:, 0]) % (2 * np.pi)) / (2 * np.pi)
+    # The cell of each sample: cells tile the square, so exactly one holds it (up to rounding).
+    order = np.lexsort((cells[:, 1], cells[:, 0]))
+    cells = cells[order]
+    inside = (
+        (u[:, None] >= cells[None, :, 0])
+        & (u[:, None] < cells[None, :, 0] + cells[None, :, 2])
+        & (v[:, None] >= cells[None, :, 1])
+        & (v[:, None] < cells[None, :, 1] + cells[None, :, 2])
+    )
+    observed = np.bincount(inside.argmax(1)[inside.any(1)], minlength=len(cells)).astype(float)
+    expected = n * cells[:, 3] * cells[:, 2] ** 2
+    statistic, k = pearson(observed, expected)
+    dof = max(k - 1, 1)
+    return statistic, dof, chi2_sf(statistic, dof) if math.isfinite(statistic) else 0.0
+
+
+@pytest.mark.parametrize("transport", ["radiance", "importance"])
+def test_guide_samples_follow_its_density(cornell: dualight.Scene, transport: str) -> None:
+    guide = dualight.train_guide(cornell, transport, spp=64, seed=1)
+    leaves = guide.leaves()
+    assert guide.stats["iterations"] == 4  # 1 + 2 + 4 + 8 spp: a quarter of 64
+    busiest = np.argsort(-leaves["directional_nodes"])[:LEAVES_TESTED]
+    rng = np.random.default_rng(7)
+    level = sidak(ALPHA, 2 * LEAVES_TESTED)
+    for leaf in busiest:
+        point = (leaves["lo"][leaf] + leaves["hi"][leaf]) / 2
+        cells = guide.directional(*point)
+        # The density integrates to one over the square, and pdf() agrees with the cells.
+        assert np.sum(cells[:, 3] * cells[:, 2] ** 2) == pytest.approx(1.0, abs=1e-4)
+        centre = cells[:, :2] + cells[:, 2:3] / 2
+        cos_theta, phi = 2 * centre[:, 0] - 1, 2 * np.pi * centre[:, 1]
+        sin_theta = np.sqrt(1 - cos_theta**2)
+        dirs = np.stack([sin_theta * np.cos(phi), sin_theta * np.sin(phi), cos_theta], 1)
+        pdf = guide.pdf(
+            np.repeat(point[None], len(cells), 0).astype(np.float32), dirs.astype(np.float32)
+        )
+        np.testing.assert_allclose(pdf * 4 * np.pi, cells[:, 3], rtol=1e-4)
+        statistic, dof, p = _chi2_of_leaf(guide, point, 100_000, rng)
+        assert p > level, f"leaf {leaf}: chi2 {statistic:.1f} on {dof} dof, p {p:.2e}"
+
+
+def test_a_wrong_density_fails_the_same_chi_square(cornell: dualight.Scene) -> None:
+    """Negative control: samples drawn uniformly on the sphere do not follow the guide's density."""
+    guide = dualight.train_guide(cornell, spp=64, seed=1)
+    leaves = guide.leaves()
+    leaf = int(np.argmax(leaves["directional_nodes"]))
+    point = (leaves["lo"][leaf] + leaves["hi"][leaf]) / 2
+    cells = guide.directional(*point)
+    rng = np.random.default_rng(3)
+    n = 100_000
+    z, phi = rng.uniform(-1, 1, n), rng.uniform(0, 2 * np.pi, n)
+    u, v = (z + 1) / 2, phi / (2 * np.pi)
+    inside = (
+        (u[:, None] >= cells[None, :, 0])
+        & (u[:, None] < cells[None, :, 0] + cells[None, :, 2])
+        & (v[:, None] >= cells[None, :, 1])
+        & (v[:, None] < cells[None, :, 1] + cells[None, :, 2])
+    )
+    observed = np.bincount(inside.argmax(1), minlength=len(cells)).astype(float)
+    statistic, k = pearson(observed, n * cells[:, 3] * cells[:, 2] ** 2)
+    p = chi2_sf(statistic, max(k - 1, 1)) if math.isfinite(statistic) else 0.0
+    assert p < sidak(ALPHA, 2 * LEAVES_TESTED)
+
+
+@pytest.mark.parametrize("method", ["path", "light"])
+def test_guided_renders_do_not_depend_on_the_thread_count(
+    door: dualight.Scene, method: str
+) -> None:
+    images = [
+        dualight.render(door, method, spp=32, seed=5, threads=t, guiding=True, progress=False)
+        for t in (1, 2)
+    ]
+    assert np.array_equal(np.asarray(images[0]), np.asarray(images[1]))
+    assert np.array_equal(images[0].variance, images[1].variance)
+    g0, g1 = (dict(im.stats["guiding"]) for im in images)
+    for g in (g0, g1):
+        for key in ("training_seconds", "rendering_seconds"):
+            g.pop(key)
+    assert g0 == g1
+
+
+@pytest.mark.parametrize("method", ["path", "light"])
+def test_guided_stats_say_what_training_took(cornell: dualight.Scene, method: str) -> None:
+    image = dualight.render(
+        cornell, method, spp=64, seed=2, guiding={"training": 0.5}, progress=False
+    )
+    stats = image.stats
+    g = stats["guiding"]
+    assert stats["spp"] == 64  # training comes on top of the image's samples
+    assert g["iterations"] == 5 and g["training_spp"] == 31  # 1 + 2 + 4 + 8 + 16 <= 32
+    assert g["spatial_leaves"] >= 1 and g["directional_nodes"] >= 1 and g["records"] > 0
+    assert 0.5 <= g["bsdf_fraction_min"] <= g["bsdf_fraction"] <= g["bsdf_fraction_max"] <= 1.0
+    assert stats["seconds"] == pytest.approx(g["training_seconds"] + g["rendering_seconds"])
+    unguided = dualight.render(cornell, method, spp=64, seed=2, progress=False)
+    assert "guiding" not in unguided.stats
+
+
+def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
+    """With the BSDF always chosen the guide draws no random number: the unguided image."""
+    fixed = {"learn_bsdf_fraction": False, "bsdf_fraction": 1.0}
+    for method in ("path", "light"):
+        guided = dualight.render(cornell, method, spp=16, seed=4, guiding=fixed, progress=False)
+        plain = dualight.render(cornell, method, spp=16, seed=4, progress=False)
+        assert np.array_equal(np.asarray(guided), np.asarray(plain))
+
+
+@pytest.fixture
+def ctrl_c_raises() -> Iterator[None]:
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+@pytest.mark.usefixtures("ctrl_c_raises")
+@pytest.mark.parametrize("transport", ["radiance", "importance"])
+def test_ctrl_c_stops_training_within_half_a_second(door: dualight.Scene, transport: str) -> None:
+    sent: list[float] = []
+
+    def interrupt() -> None:
+        sent.append(time.perf_counter())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(0.3, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as caught:
+            dualight.train_guide(door, transport, spp=1 << 16, guiding={"training": 0.9})
+    finally:
+        timer.cancel()
+    assert sent and time.perf_counter() - sent[0] < 0.5
+    assert hasattr(caught.value, "partial_result")
+
+
+def test_a_progress_callback_error_reaches_the_caller(door: dualight.Scene) -> None:
+    class Stop(Exception):
+        pass
+
+    def progress(done: int, total: int) -> None:
+        raise Stop
+
+    with pytest.raises(Stop):
+        dualight.render(door, "path", spp=1 << 14, guiding=True, progress=progress)
+
+
+def test_bad_guiding_input_is_named(cornell: dualight.Scene) -> None:
+    with pytest.raises(ValueError, match="guiding applies to method 'path', 'light' only"):
+        dualight.render(cornell, "bdpt", spp=4, guiding=True, progress=False)
+    with pytest.raises(TypeError, match="unknown guiding option 'trainig'"):
+        dualight.render(cornell, "path", spp=4, guiding={"trainig": 0.5}, progress=False)
+    with pytest.raises(TypeError, match="guiding must be True, False or a dict"):
+        dualight.render(cornell, "path", spp=4, guiding="yes", progress=False)  # type: ignore[arg-type]
+    for key, value in (
+        ("training", 1.0),
+        ("training", 0.0),
+        ("bsdf_fraction", 1.5),
+        ("rho", 0.0),
+        ("spatial_threshold", 0),
+        ("max_records", 1 << 30),
+        ("training", float("nan")),
+    ):
+        with pytest.raises(ValueError, match=f"guide_{key}"):
+            dualight.render(cornell, "light", spp=4, guiding={key: value}, progress=False)
+    with pytest.raises(ValueError, match="transport must be"):
+        dualight.train_guide(cornell, "radiosity")  # type: ignore[arg-type]
+    from concurrent.futures import ThreadPoolExecutor
+
+    with (
+        ThreadPoolExecutor(1) as pool,
+        pytest.raises(ValueError, match="guiding is not supported with executor"),
+    ):
+        dualight.render(cornell, "path", spp=16, guiding=True, executor=pool, progress=False)
