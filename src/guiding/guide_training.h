@@ -107,6 +107,23 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
   return out;
 }
 
+// A training iteration's options: spp samples on its own seed, no time limit, from sample 0.
+template <class Options>
+Options iteration_options(Options o, uint32_t spp, uint64_t seed) {
+  o.spp = spp;
+  o.seed = seed;
+  o.time_limit = 0.0;
+  o.first_sample = 0;
+  return o;
+}
+
+// The image's options after training: under a time limit, the time left.
+template <class Options>
+Options after_training(Options o, const TrainedGuide& trained) {
+  if (o.time_limit > 0.0) o.time_limit = std::max(1e-3, o.time_limit - trained.stats.training_seconds);
+  return o;
+}
+
 // The image's stats with the training's: its time and rays count in the render's, as an
 // equal-time comparison needs.
 inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {

@@ -170,10 +170,7 @@ RenderStats drive_light(const Scene& scene, const PinholeCamera& camera, const L
 RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                                  RenderControl& control) {
   const TrainedGuide trained = train_importance_guide(scene, camera, options, control);
-  LightTracerOptions final_options = options;
-  if (options.time_limit > 0.0) {
-    final_options.time_limit = std::max(1e-3, options.time_limit - trained.stats.training_seconds);
-  }
+  const LightTracerOptions final_options = after_training(options, trained);
   RenderResult result{Film(camera.width(), camera.height()), {}};
   result.stats = drive_light(scene, camera, final_options, control, result.film,
                              {{trained.tree.get()}, nullptr});
@@ -188,11 +185,7 @@ TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& cam
   PixelImportance pixel_weight;  // uniform until an iteration's image is there
   return train_guide(scene, options, options, control,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
-                       LightTracerOptions o = options;
-                       o.spp = spp;
-                       o.seed = seed;
-                       o.time_limit = 0.0;
-                       o.first_sample = 0;
+                       const LightTracerOptions o = iteration_options(options, spp, seed);
                        Film scratch(camera.width(), camera.height());
                        const RenderStats s = drive_light(scene, camera, o, control, scratch,
                                                          {{tree}, &collector, &pixel_weight});

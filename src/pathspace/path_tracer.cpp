@@ -227,10 +227,7 @@ RenderStats drive_path(const Scene& scene, const PinholeCamera& camera, const Pa
 RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                 RenderControl& control) {
   const TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
-  PathTracerOptions final_options = options;
-  if (options.time_limit > 0.0) {
-    final_options.time_limit = std::max(1e-3, options.time_limit - trained.stats.training_seconds);
-  }
+  const PathTracerOptions final_options = after_training(options, trained);
   RenderResult result{Film(camera.width(), camera.height()), {}};
   result.stats =
       drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()});
@@ -244,11 +241,7 @@ TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camer
                                   RenderControl& control) {
   return train_guide(scene, options, options, control,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
-                       PathTracerOptions o = options;
-                       o.spp = spp;
-                       o.seed = seed;
-                       o.time_limit = 0.0;
-                       o.first_sample = 0;
+                       const PathTracerOptions o = iteration_options(options, spp, seed);
                        Film scratch(camera.width(), camera.height());
                        return drive_path(scene, camera, o, control, scratch, {tree}, &collector);
                      });
