@@ -33,21 +33,13 @@ def door() -> dualight.Scene:
     return scenes.door_ajar(resolution=(32, 32))
 
 
-def _chi2_of_leaf(
-    guide, point: np.ndarray, n: int, rng: np.random.Generator
-) -> tuple[float, int, float]:
-    """Pearson's statistic of n samples at `point` over the leaf's own quadtree cells (each
-    expects n times its density times its area on the square)."""
-    cells = guide.directional(*point)
-    d = guide.sample(
-        np.repeat(point[None].astype(np.float32), n, 0), rng.random((n, 2), dtype=np.float32)
-    )
+def _chi2(cells: np.ndarray, d: np.ndarray) -> tuple[float, int, float]:
+    """Pearson's statistic of unit directions d (N, 3) over a leaf's quadtree cells (rows u0,
+    v0, size, density on the square; each expects N times its density times its area)."""
     assert np.isfinite(d).all()
     u = (d[:, 2] + 1) / 2
     v = (np.arctan2(d[:, 1], d[:, 0]) % (2 * np.pi)) / (2 * np.pi)
-    # The cell of each sample: cells tile the square, so exactly one holds it (up to rounding).
-    order = np.lexsort((cells[:, 1], cells[:, 0]))
-    cells = cells[order]
+    # The cell of each direction: cells tile the square, so one holds it (up to rounding).
     inside = (
         (u[:, None] >= cells[None, :, 0])
         & (u[:, None] < cells[None, :, 0] + cells[None, :, 2])
@@ -55,8 +47,7 @@ def _chi2_of_leaf(
         & (v[:, None] < cells[None, :, 1] + cells[None, :, 2])
     )
     observed = np.bincount(inside.argmax(1)[inside.any(1)], minlength=len(cells)).astype(float)
-    expected = n * cells[:, 3] * cells[:, 2] ** 2
-    statistic, k = pearson(observed, expected)
+    statistic, k = pearson(observed, len(d) * cells[:, 3] * cells[:, 2] ** 2)
     dof = max(k - 1, 1)
     return statistic, dof, chi2_sf(statistic, dof) if math.isfinite(statistic) else 0.0
 
@@ -82,7 +73,11 @@ def test_guide_samples_follow_its_density(cornell: dualight.Scene, transport: st
             np.repeat(point[None], len(cells), 0).astype(np.float32), dirs.astype(np.float32)
         )
         np.testing.assert_allclose(pdf * 4 * np.pi, cells[:, 3], rtol=1e-4)
-        statistic, dof, p = _chi2_of_leaf(guide, point, 100_000, rng)
+        n = 100_000
+        d = guide.sample(
+            np.repeat(point[None].astype(np.float32), n, 0), rng.random((n, 2), dtype=np.float32)
+        )
+        statistic, dof, p = _chi2(cells, d)
         assert p > level, f"leaf {leaf}: chi2 {statistic:.1f} on {dof} dof, p {p:.2e}"
 
 
@@ -94,18 +89,8 @@ def test_a_wrong_density_fails_the_same_chi_square(cornell: dualight.Scene) -> N
     point = (leaves["lo"][leaf] + leaves["hi"][leaf]) / 2
     cells = guide.directional(*point)
     rng = np.random.default_rng(3)
-    n = 100_000
-    z, phi = rng.uniform(-1, 1, n), rng.uniform(0, 2 * np.pi, n)
-    u, v = (z + 1) / 2, phi / (2 * np.pi)
-    inside = (
-        (u[:, None] >= cells[None, :, 0])
-        & (u[:, None] < cells[None, :, 0] + cells[None, :, 2])
-        & (v[:, None] >= cells[None, :, 1])
-        & (v[:, None] < cells[None, :, 1] + cells[None, :, 2])
-    )
-    observed = np.bincount(inside.argmax(1), minlength=len(cells)).astype(float)
-    statistic, k = pearson(observed, n * cells[:, 3] * cells[:, 2] ** 2)
-    p = chi2_sf(statistic, max(k - 1, 1)) if math.isfinite(statistic) else 0.0
+    d = rng.normal(size=(100_000, 3))
+    _, _, p = _chi2(cells, d / np.linalg.norm(d, axis=1, keepdims=True))
     assert p < sidak(ALPHA, 2 * LEAVES_TESTED)
 
 

@@ -71,7 +71,7 @@ py::array_t<float> guide_sample(const Guide& g, const Rows& points, const Rows& 
   return to_numpy(std::move(out), {static_cast<py::ssize_t>(n), 3});
 }
 
-// The spatial leaves: dict(lo, hi, directional_nodes, total).
+// The spatial leaves: dict(lo, hi, directional_nodes, total, bsdf_fraction).
 py::dict guide_leaves(const Guide& g) {
   const SdTree& tree = tree_of(g);
   const std::vector<SdTree::LeafBox> boxes = tree.leaf_boxes();
@@ -108,11 +108,10 @@ py::array_t<float> guide_directional(const Guide& g, float x, float y, float z) 
       const Item it = stack.back();
       stack.pop_back();
       const DirectionalQuadtree::Node& n = d.nodes()[it.node];
-      const float sum = n.value[0] + n.value[1] + n.value[2] + n.value[3];
       for (int q = 0; q < 4; ++q) {
         const float half = 0.5f * it.size;
         const float u0 = it.u0 + ((q & 1) ? half : 0.f), v0 = it.v0 + ((q & 2) ? half : 0.f);
-        const float density = sum > 0.f ? it.density * 4.f * n.value[q] / sum : 0.f;
+        const float density = it.density * n.density[q];  // as pdf_square multiplies them
         if (n.child[q] != 0) {
           stack.push_back({n.child[q], u0, v0, half, density});
         } else {
@@ -123,13 +122,6 @@ py::array_t<float> guide_directional(const Guide& g, float x, float y, float z) 
   }
   const py::ssize_t n = static_cast<py::ssize_t>(rows.size() / 4);
   return to_numpy(std::move(rows), {n, 4});
-}
-
-py::dict guiding_stats_dict(const GuidingStats& s) {
-  RenderStats r;
-  r.guiding = s;
-  r.guiding.used = true;
-  return stats_dict(r)["guiding"].cast<py::dict>();
 }
 
 template <class Options, class Train>
@@ -168,7 +160,7 @@ void bind_guiding(py::module_& m) {
       .def("directional", &guide_directional, py::arg("x"), py::arg("y"), py::arg("z"),
            "The quadtree at a point: rows (u0, v0, size, density on the unit square); u = (cos theta + 1) / 2, "
            "v = phi / (2 pi); solid-angle density = density / (4 pi).")
-      .def_property_readonly("stats", [](const Guide& g) { return guiding_stats_dict(g.stats); })
+      .def_property_readonly("stats", [](const Guide& g) { return guiding_dict(g.stats); })
       .def_property_readonly("empty", [](const Guide& g) { return !g.tree; });
 
   def_training<PathTracerOptions>(m, "train_radiance_guide", &train_radiance_guide,

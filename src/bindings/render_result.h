@@ -20,6 +20,23 @@ namespace dualight::bindings {
 
 namespace py = pybind11;
 
+// What training a guide took and made (RenderStats::guiding, Guide.stats).
+inline py::dict guiding_dict(const GuidingStats& g) {
+  py::dict d;
+  d["iterations"] = g.iterations;
+  d["training_spp"] = g.training_spp;
+  d["records"] = g.records;
+  d["spatial_leaves"] = g.spatial_leaves;
+  d["directional_nodes"] = g.directional_nodes;
+  d["training_seconds"] = g.training_seconds;
+  d["rendering_seconds"] = g.rendering_seconds;
+  d["bsdf_fraction"] = g.bsdf_fraction;
+  d["bsdf_fraction_min"] = g.bsdf_fraction_min;
+  d["bsdf_fraction_max"] = g.bsdf_fraction_max;
+  d["stopped_by_records"] = g.stopped_by_records;
+  return d;
+}
+
 inline py::dict stats_dict(const RenderStats& s) {
   py::dict d;
   d["samples"] = s.samples;
@@ -34,22 +51,7 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
   d["interrupted"] = s.interrupted;
   d["time_limited"] = s.time_limited;
-  if (s.guiding.used) {
-    const GuidingStats& g = s.guiding;
-    py::dict guiding;
-    guiding["iterations"] = g.iterations;
-    guiding["training_spp"] = g.training_spp;
-    guiding["records"] = g.records;
-    guiding["spatial_leaves"] = g.spatial_leaves;
-    guiding["directional_nodes"] = g.directional_nodes;
-    guiding["training_seconds"] = g.training_seconds;
-    guiding["rendering_seconds"] = g.rendering_seconds;
-    guiding["bsdf_fraction"] = g.bsdf_fraction;
-    guiding["bsdf_fraction_min"] = g.bsdf_fraction_min;
-    guiding["bsdf_fraction_max"] = g.bsdf_fraction_max;
-    guiding["stopped_by_records"] = g.stopped_by_records;
-    d["guiding"] = guiding;
-  }
+  if (s.guiding.used) d["guiding"] = guiding_dict(s.guiding);
   return d;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -46,7 +47,7 @@ class RecordCollector {
 struct TrainedGuide {
   std::shared_ptr<const SdTree> tree;  // null when no iteration finished
   GuidingStats stats;
-  RenderStats work;  // the iterations' rays and samples
+  uint64_t rays = 0;  // traced by the iterations
 };
 
 // The scene's box, grown a little so every vertex falls inside.
@@ -81,7 +82,7 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
     RecordCollector collector;
     const RenderStats s = run(spp, hash_combine(est.seed, 0x67756964ull + static_cast<uint64_t>(k)), out.tree.get(),
                               collector);
-    out.work.rays += s.rays;
+    out.rays += s.rays;
     if (s.interrupted || control.cancelled()) break;
     GuideRecords records = collector.take();
     last_records = records.size();
@@ -131,7 +132,7 @@ inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {
   stats.guiding.used = true;
   stats.guiding.rendering_seconds = stats.seconds;
   stats.seconds += trained.stats.training_seconds;
-  stats.rays += trained.work.rays;
+  stats.rays += trained.rays;
 }
 
 }  // namespace dualight

@@ -20,6 +20,10 @@ struct VertexGuide {
   float bsdf_fraction = 1.f;
 
   bool active() const { return directions != nullptr; }
+  // The mixture's solid-angle density of world direction w, given the BSDF's.
+  float mixture_pdf_w(float pdf_bsdf, const Vec3& w) const {
+    return bsdf_fraction * pdf_bsdf + (1.f - bsdf_fraction) * directions->pdf_w(w);
+  }
 };
 
 // The guide of `leaf` for a vertex with BSDF b: none for Dirac BSDFs, where the leaf learnt
@@ -53,7 +57,7 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
     f_cos = eval_f(b, wo, bs.wi, m) * std::abs(bs.wi.z);
     pdf_bsdf = pdf_w(b, wo, bs.wi, m);
   }
-  const float pdf = alpha * pdf_bsdf + (1.f - alpha) * g.directions->pdf_w(frame.to_world(bs.wi));
+  const float pdf = g.mixture_pdf_w(pdf_bsdf, frame.to_world(bs.wi));
   if (is_black(f_cos) || !(pdf > 0.f)) return false;
   bs.weight = f_cos / pdf;
   bs.pdf_w = pdf;

@@ -43,14 +43,20 @@ float learn_bsdf_fraction(const GuideRecord* begin, const GuideRecord* end, cons
   return (best + 1) / static_cast<float>(kSteps);
 }
 
-}  // namespace
-
-namespace {
-
 // The cell of p at the finest level as a Morton code: 21 bits of each coordinate over the box,
 // interleaved x, y, z from the top, so that every node of the tree (split at the middle, x, y,
 // z in turn) holds one run of the records sorted by code.
 constexpr int kMortonBits = 21;
+
+Vec3 morton_scale(const Vec3& lo, const Vec3& hi) { return Vec3(static_cast<float>(1u << kMortonBits)) / (hi - lo); }
+
+// The halves of the cell [lo, hi] split at `split` along `axis`: the lower one's hi, the upper one's lo.
+void split_cell(const Vec3& lo, const Vec3& hi, int axis, float split, Vec3& lower_hi, Vec3& upper_lo) {
+  lower_hi = hi;
+  upper_lo = lo;
+  (axis == 0 ? lower_hi.x : axis == 1 ? lower_hi.y : lower_hi.z) = split;
+  (axis == 0 ? upper_lo.x : axis == 1 ? upper_lo.y : upper_lo.z) = split;
+}
 
 uint64_t spatial_code(const Vec3& p, const Vec3& lo, const Vec3& scale) {
   uint64_t code = 0;
@@ -70,7 +76,7 @@ uint64_t spatial_code(const Vec3& p, const Vec3& lo, const Vec3& scale) {
 
 SdTree::SdTree(GuideRecords& records, const Vec3& lo, const Vec3& hi, const SdTreeSettings& settings)
     : lo_(lo), hi_(hi), grid_scale_(Vec3(static_cast<float>(1 << kGridLevels)) / (hi - lo)), records_(records.size()) {
-  const Vec3 scale = Vec3(static_cast<float>(1u << kMortonBits)) / (hi - lo);
+  const Vec3 scale = morton_scale(lo, hi);
   const auto code = [&](const GuideRecord& r) { return spatial_code(r.p, lo, scale); };
   sort_records_by(records.data(), records.data() + records.size(), code);
   nodes_.emplace_back();
@@ -105,7 +111,7 @@ void SdTree::build(uint32_t node, GuideRecord* begin, GuideRecord* end, Vec3 lo,
     return;
   }
   const float mid = 0.5f * (lo[axis] + hi[axis]);
-  const Vec3 scale = Vec3(static_cast<float>(1u << kMortonBits)) / (hi_ - lo_);
+  const Vec3 scale = morton_scale(lo_, hi_);
   const int bit = 3 * kMortonBits - 1 - depth;
   GuideRecord* middle = std::partition_point(
       begin, end, [&](const GuideRecord& r) { return ((spatial_code(r.p, lo_, scale) >> bit) & 1u) == 0; });
@@ -115,9 +121,8 @@ void SdTree::build(uint32_t node, GuideRecord* begin, GuideRecord* end, Vec3 lo,
   nodes_[node].child = child;
   nodes_.emplace_back();
   nodes_.emplace_back();
-  Vec3 lower_hi = hi, upper_lo = lo;
-  (axis == 0 ? lower_hi.x : axis == 1 ? lower_hi.y : lower_hi.z) = mid;
-  (axis == 0 ? upper_lo.x : axis == 1 ? upper_lo.y : upper_lo.z) = mid;
+  Vec3 lower_hi, upper_lo;
+  split_cell(lo, hi, axis, mid, lower_hi, upper_lo);
   build(child, begin, middle, lo, lower_hi, depth + 1, settings, runs);
   build(child + 1, middle, end, upper_lo, hi, depth + 1, settings, runs);
 }
@@ -191,9 +196,8 @@ std::vector<SdTree::LeafBox> SdTree::leaf_boxes() const {
       boxes.push_back({it.lo, it.hi, n.leaf});
       continue;
     }
-    Vec3 lower_hi = it.hi, upper_lo = it.lo;
-    (n.axis == 0 ? lower_hi.x : n.axis == 1 ? lower_hi.y : lower_hi.z) = n.split;
-    (n.axis == 0 ? upper_lo.x : n.axis == 1 ? upper_lo.y : upper_lo.z) = n.split;
+    Vec3 lower_hi, upper_lo;
+    split_cell(it.lo, it.hi, n.axis, n.split, lower_hi, upper_lo);
     stack.push_back({n.child + 1, upper_lo, it.hi});
     stack.push_back({n.child, it.lo, lower_hi});
   }

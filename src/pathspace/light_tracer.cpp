@@ -52,10 +52,9 @@ void record_importance(const Path& path, const std::vector<Color>& contribution,
     const Vec3 w = d / std::sqrt(dist2);
     const float pdf_w = next.pdf_fwd * dist2 / std::abs(dot(next.n, w));
     const float pdf_bsdf = surface_pdf_w(v, v.wo, w, TransportMode::Importance);
-    Color fcos(0.f);  // f |cos| (the shading-normal correction included) where beta is not 0
-    for (int c = 0; c < 3; ++c) {
-      if (v.beta[c] > 0.f) (c == 0 ? fcos.x : c == 1 ? fcos.y : fcos.z) = next.beta[c] / v.beta[c] * pdf_w;
-    }
+    // f |cos| (the shading-normal correction included), where beta is not 0.
+    const auto fcos_of = [&](int c) { return v.beta[c] > 0.f ? next.beta[c] / v.beta[c] * pdf_w : 0.f; };
+    const Color fcos(fcos_of(0), fcos_of(1), fcos_of(2));
     GuideRecord r;
     if (make_record(v.p, w, after, next.beta, fcos, pdf_bsdf, pdf_w, r)) out.push_back(r);
   }

@@ -55,9 +55,8 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
     return Color(0.f);
   }
   float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
-  if (guide.active()) {  // the density of the guided mixture, which made the other strategy's samples
-    pdf_bsdf_w = guide.bsdf_fraction * pdf_bsdf_w + (1.f - guide.bsdf_fraction) * guide.directions->pdf_w(ls.wi);
-  }
+  // Guided, the other strategy's samples come from the mixture.
+  if (guide.active()) pdf_bsdf_w = guide.mixture_pdf_w(pdf_bsdf_w, ls.wi);
   // A delta emitter (a point light, a direction) is found by no BSDF sample: its sample keeps
   // full weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
   const float weight = is_delta_light(*choice.emitter)
@@ -77,7 +76,7 @@ struct PathGuiding {
 };
 
 // The vertices of one camera path that sampled a non-Dirac direction, with the radiance that
-// arrived along each: every later contribution over the throughput there (records.h). They
+// arrived along each: every later contribution over the throughput there (guide_record.h). They
 // become records when the path ends.
 class RadianceRecorder {
  public:
@@ -194,10 +193,6 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
   }
   return L;
 }
-
-}  // namespace
-
-namespace {
 
 // The pixels' samples on `film`, guided by `guiding` (no tree and no collector: unguided, with
 // no guiding code compiled into the path).
