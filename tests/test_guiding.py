@@ -129,11 +129,25 @@ def test_guided_stats_say_what_training_took(cornell: dualight.Scene, method: st
 
 def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
     """With the BSDF always chosen the guide draws no random number: the unguided image."""
-    fixed = {"learn_bsdf_fraction": False, "bsdf_fraction": 1.0}
+    fixed = {"learn_bsdf_fraction": False, "bsdf_fraction": 1.0, "adjoint_roulette": False}
     for method in ("path", "light"):
         guided = dualight.render(cornell, method, spp=16, seed=4, guiding=fixed, progress=False)
         plain = dualight.render(cornell, method, spp=16, seed=4, progress=False)
         assert np.array_equal(np.asarray(guided), np.asarray(plain))
+
+
+def test_adjoint_roulette_says_what_it_did(door: dualight.Scene) -> None:
+    """On the door, paths in the dark room split and paths with little left to carry stop;
+    without the roulette neither happens (and the light tracer never plays it)."""
+    g = dualight.render(door, "path", spp=16, seed=3, guiding=True, progress=False).stats["guiding"]
+    assert g["adjoint_roulette"] and g["split_paths"] > 0 and g["roulette_stops"] > 0
+    off = {"adjoint_roulette": False}
+    g = dualight.render(door, "path", spp=16, seed=3, guiding=off, progress=False).stats["guiding"]
+    assert not g["adjoint_roulette"] and g["split_paths"] == 0 and g["roulette_stops"] == 0
+    g = dualight.render(door, "light", spp=16, seed=3, guiding=True, progress=False).stats[
+        "guiding"
+    ]
+    assert not g["adjoint_roulette"] and g["split_paths"] == 0
 
 
 @pytest.fixture

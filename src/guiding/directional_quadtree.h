@@ -67,8 +67,9 @@ class DirectionalQuadtree {
   float pdf_w(const Vec3& w) const;
   // The density on the unit square of a point of it (pdf_w times 4 pi).
   float pdf_square(Point2 p) const;
-  // A unit direction with density pdf_w.
-  Vec3 sample(Point2 u) const;
+  // A unit direction with density pdf_w; *pdf_w (when given) is that density, found on the way
+  // down (the same factors in the same order as pdf_square).
+  Vec3 sample(Point2 u, float* pdf_w = nullptr) const;
 
  private:
   uint32_t build(const GuideRecord* begin, const GuideRecord* end, int depth);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -48,6 +49,8 @@ struct TrainedGuide {
   std::shared_ptr<const SdTree> tree;  // null when no iteration finished
   GuidingStats stats;
   uint64_t rays = 0;  // traced by the iterations
+  // The last iteration's image, luminance per pixel (row-major), where the estimator keeps it.
+  std::vector<double> image;
 };
 
 // The scene's box, grown a little so every vertex falls inside.
@@ -92,7 +95,7 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
     settings.rho = g.guide_rho;
     settings.learn_bsdf_fraction = g.guide_learn_bsdf_fraction;
     settings.bsdf_fraction = g.guide_bsdf_fraction;
-    out.tree = std::make_shared<const SdTree>(records, lo, hi, settings);
+    out.tree = std::make_shared<const SdTree>(records, lo, hi, settings, out.tree.get());
     spp_done += spp;
     last_seconds = elapsed() - start;
     out.stats.iterations = k + 1;

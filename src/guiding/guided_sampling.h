@@ -40,7 +40,7 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
   if (!g.active()) return sample(b, wo, u, m, bs);
   const float alpha = g.bsdf_fraction;
   Color f_cos;
-  float pdf_bsdf;
+  float pdf_bsdf, pdf;
   if (u_select < alpha) {
     if (!sample(b, wo, u, m, bs)) return false;
     if (bs.delta) {
@@ -51,13 +51,15 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
     // A non-Dirac sample's pdf_w is pdf_w(b, wo, wi) (bsdf.h), so f |cos| = weight pdf_w.
     f_cos = bs.weight * bs.pdf_w;
     pdf_bsdf = bs.pdf_w;
+    pdf = g.mixture_pdf_w(pdf_bsdf, frame.to_world(bs.wi));
   } else {
-    bs.wi = frame.to_local(g.directions->sample(u));
+    float pdf_guide;
+    bs.wi = frame.to_local(g.directions->sample(u, &pdf_guide));
     bs.delta = false;
     f_cos = eval_f(b, wo, bs.wi, m) * std::abs(bs.wi.z);
     pdf_bsdf = pdf_w(b, wo, bs.wi, m);
+    pdf = alpha * pdf_bsdf + (1.f - alpha) * pdf_guide;
   }
-  const float pdf = g.mixture_pdf_w(pdf_bsdf, frame.to_world(bs.wi));
   if (is_black(f_cos) || !(pdf > 0.f)) return false;
   bs.weight = f_cos / pdf;
   bs.pdf_w = pdf;

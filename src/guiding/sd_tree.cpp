@@ -16,18 +16,19 @@ constexpr size_t kMinEvidence = 16;
 
 // The BSDF fraction alpha in {0.1, ..., 1}, at least `floor`, minimising the second moment of the one-sample
 // estimate with density alpha pdf_bsdf + (1 - alpha) pdf_guide, sum of product^2 / (mixture
-// pdf_sampled) over the records (importance sampling by the density they were drawn from).
+// pdf_sampled) over the records (importance sampling by the density they were drawn from), with
+// pdf_guide the previous tree's (out of sample). 1 where the leaf's own guide is empty.
 // Ties go to the larger fraction.
 float learn_bsdf_fraction(const GuideRecord* begin, const GuideRecord* end, const DirectionalQuadtree& d,
-                          float floor) {
-  if (d.empty()) return 1.f;
+                          const SdTree* previous, float floor) {
+  if (d.empty() || previous == nullptr) return 1.f;
   constexpr int kSteps = 10;
   double moment[kSteps] = {};
   size_t evidence = 0;
   for (const GuideRecord* r = begin; r != end; ++r) {
     if (!(r->product > 0.f)) continue;
     ++evidence;
-    const double pdf_guide = d.pdf_square(r->dir) * (0.25 / kPi);
+    const double pdf_guide = previous->at(r->p).directions.pdf_square(r->dir) * (0.25 / kPi);
     const double c2 = static_cast<double>(r->product) * r->product / r->pdf_sampled;
     for (int j = 0; j < kSteps; ++j) {
       const double alpha = (j + 1) / static_cast<double>(kSteps);
@@ -74,7 +75,8 @@ uint64_t spatial_code(const Vec3& p, const Vec3& lo, const Vec3& scale) {
 
 }  // namespace
 
-SdTree::SdTree(GuideRecords& records, const Vec3& lo, const Vec3& hi, const SdTreeSettings& settings)
+SdTree::SdTree(GuideRecords& records, const Vec3& lo, const Vec3& hi, const SdTreeSettings& settings,
+               const SdTree* previous)
     : lo_(lo), hi_(hi), grid_scale_(Vec3(static_cast<float>(1 << kGridLevels)) / (hi - lo)), records_(records.size()) {
   const Vec3 scale = morton_scale(lo, hi);
   const auto code = [&](const GuideRecord& r) { return spatial_code(r.p, lo, scale); };
@@ -92,8 +94,11 @@ SdTree::SdTree(GuideRecords& records, const Vec3& lo, const Vec3& hi, const SdTr
     Leaf& leaf = leaves_[i];
     leaf.directions = DirectionalQuadtree(begin, end, settings.rho, settings.max_directional_depth);
     leaf.bsdf_fraction = settings.learn_bsdf_fraction
-                             ? learn_bsdf_fraction(begin, end, leaf.directions, settings.bsdf_fraction)
+                             ? learn_bsdf_fraction(begin, end, leaf.directions, previous, settings.bsdf_fraction)
                              : settings.bsdf_fraction;
+    double reflected = 0.0;
+    for (const GuideRecord* r = begin; r != end; ++r) reflected += r->product / r->pdf_sampled;
+    leaf.reflected = end > begin ? static_cast<float>(reflected / static_cast<double>(end - begin)) : 0.f;
     leaf_records_[i] = static_cast<size_t>(end - begin);
   });
 }

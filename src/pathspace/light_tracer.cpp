@@ -6,6 +6,7 @@
 
 #include "core/parallel.h"
 #include "core/stopwatch.h"
+#include "film/pixel_estimate.h"
 #include "film/splat_list.h"
 #include "guiding/guide_training.h"
 #include "pathspace/mlt_importance.h"
@@ -188,12 +189,8 @@ TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& cam
                        Film scratch(camera.width(), camera.height());
                        const RenderStats s = drive_light(scene, camera, o, control, scratch,
                                                          {{tree}, &collector, &pixel_weight});
-                       const std::vector<float> mean = scratch.mean();
-                       std::vector<double> luminance(mean.size() / 3);
-                       for (size_t i = 0; i < luminance.size(); ++i) {
-                         luminance[i] = dualight::luminance(Color(mean[3 * i], mean[3 * i + 1], mean[3 * i + 2]));
-                       }
-                       pixel_weight = PixelImportance(luminance, camera.width(), camera.height(), 2, 0.01);
+                       pixel_weight =
+                           PixelImportance(film_luminance(scratch), camera.width(), camera.height(), 2, 0.01);
                        return s;
                      });
 }

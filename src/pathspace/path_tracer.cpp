@@ -1,10 +1,14 @@
 #include "pathspace/path_tracer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <type_traits>
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "film/pixel_estimate.h"
+#include "guiding/adjoint_rr.h"
 #include "guiding/guide_training.h"
 #include "guiding/guided_sampling.h"
 #include "materials/shading_normal.h"
@@ -54,25 +58,30 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
     ++counters.skipped_connections;
     return Color(0.f);
   }
-  float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
-  // Guided, the other strategy's samples come from the mixture.
-  if (guide.active()) pdf_bsdf_w = guide.mixture_pdf_w(pdf_bsdf_w, ls.wi);
+  const float pdf_bsdf_w = pdf_w_world(bsdf, hit.ns, wo_world, ls.wi, TransportMode::Radiance);
   // A delta emitter (a point light, a direction) is found by no BSDF sample: its sample keeps
   // full weight (ls.pdf_w is then a discrete probability, not comparable with pdf_bsdf_w).
-  const float weight = is_delta_light(*choice.emitter)
-                           ? 1.f
-                           : two_strategy_weight(strategies, Strategies::Light, ls.pdf_w, pdf_bsdf_w);
+  const bool delta_light = is_delta_light(*choice.emitter);
+  float weight = delta_light ? 1.f : two_strategy_weight(strategies, Strategies::Light, ls.pdf_w, pdf_bsdf_w);
   if (weight == 0.f) return Color(0.f);  // BSDF sampling alone: no shadow ray
   if (!shadow_ray_visible_to(scene, hit.p, hit.n, hit.prim, ls.p, ls.prim, ls.on_surface, counters)) {
     return Color(0.f);
+  }
+  // Guided, the other strategy's samples come from the mixture (its density is looked up only
+  // for the light samples that arrive: the weight is 0 only where BSDF sampling alone is used).
+  if (guide.active() && !delta_light) {
+    weight = two_strategy_weight(strategies, Strategies::Light, ls.pdf_w, guide.mixture_pdf_w(pdf_bsdf_w, ls.wi));
   }
   return beta * f * ls.Le * (std::abs(dot(ls.wi, hit.ns)) * weight / ls.pdf_w);
 }
 
 // The guide of a guided render (guiding/), and where a training iteration keeps its records.
+// With pixel_estimate > 0 (the final render's sample of a pixel of that estimated value, never a
+// training iteration's) paths play adjoint-driven roulette and splitting (adjoint_rr.h).
 struct PathGuiding {
   const SdTree* tree = nullptr;
   GuideRecords* records = nullptr;
+  float pixel_estimate = 0.f;
 };
 
 // The vertices of one camera path that sampled a non-Dirac direction, with the radiance that
@@ -120,36 +129,40 @@ struct NoRecorder {
   static void add(Color& L, const Color& C) { L += C; }
 };
 
-// One camera path; returns its radiance estimate. kGuided compiles the guide's sampling and
-// records in.
-template <bool kGuided, class Sampler>
-Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Sampler& sampler,
-                 TraceCounters& counters, const PathGuiding& guiding) {
+// Where a camera path is between two vertices.
+struct CameraPathState {
+  Ray ray;
+  Color beta{1.f};
+  float prev_pdf_w = 0.f;   // solid-angle density of the BSDF sample that made `ray`
+  bool prev_delta = true;   // the camera ray, like a delta bounce, cannot be found by NEE
+  int depth = 1;            // the number of segments up to and including `ray`: the index of the vertex it hits
+  int paths = 1;            // how many paths splitting has made of the camera sample so far
+};
+
+// Follows a camera path from state s, adding what it finds to L; where adjoint-driven roulette
+// splits it, the extra paths are followed by recursion. kGuided compiles the guide's sampling,
+// records and roulette in.
+template <bool kGuided, class Sampler, class Recorder>
+void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& sampler, TraceCounters& counters,
+                 const PathGuiding& guiding, Recorder& recorder, CameraPathState s, Color& L) {
   const bool has_emitters = scene.emitter_count() > 0;
   const auto depth_allows = [&](int segments) { return opt.max_depth < 0 || segments <= opt.max_depth; };
-
-  Color L(0.f), beta(1.f);
-  std::conditional_t<kGuided, RadianceRecorder, NoRecorder> recorder(guiding.records);
-  Ray ray = camera_ray;
-  float prev_pdf_w = 0.f;    // solid-angle density of the BSDF sample that made `ray`
-  bool prev_delta = true;    // the camera ray, like a delta bounce, cannot be found by NEE
-  // `depth` is the number of segments up to and including `ray`, i.e. the index of the vertex it hits.
-  for (int depth = 1; depth_allows(depth); ++depth) {
+  for (; depth_allows(s.depth); ++s.depth) {
     SurfaceHit hit;
     ++counters.rays;
-    if (!scene.intersect(ray, hit)) {
+    if (!scene.intersect(s.ray, hit)) {
       if (scene.environment() != nullptr) {
-        recorder.add(L, environment_seen(scene, *scene.environment(), ray.d, beta, prev_pdf_w, prev_delta,
+        recorder.add(L, environment_seen(scene, *scene.environment(), s.ray.d, s.beta, s.prev_pdf_w, s.prev_delta,
                                          opt.strategies));
       }
-      break;
+      return;
     }
 
-    const Vec3 wo_world = -ray.d;
+    const Vec3 wo_world = -s.ray.d;
     if (hit.emitter != nullptr) {
-      recorder.add(L, emission_seen(scene, hit, wo_world, beta, prev_pdf_w, prev_delta, opt.strategies));
+      recorder.add(L, emission_seen(scene, hit, wo_world, s.beta, s.prev_pdf_w, s.prev_delta, opt.strategies));
     }
-    if (!depth_allows(depth + 1)) break;
+    if (!depth_allows(s.depth + 1)) return;
 
     // The BSDF's frame is the shading normal's (it tells a dielectric's inside from its
     // outside); two-sided BSDFs handle wo.z < 0 themselves. Radiance transport needs no
@@ -160,45 +173,87 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
     const Bsdf& bsdf = hit.material->textured() ? textured.emplace(hit.material->bsdf_at(hit.uv))
                                                 : hit.material->bsdf;
     VertexGuide guide;
+    const SdTree::Leaf* leaf = nullptr;
     if constexpr (kGuided) {
-      if (guiding.tree != nullptr) guide = vertex_guide(guiding.tree->at(hit.p), bsdf);
+      if (guiding.tree != nullptr) {
+        leaf = &guiding.tree->at(hit.p);
+        guide = vertex_guide(*leaf, bsdf);
+      }
     }
     if (has_emitters && is_delta(bsdf)) {
       ++counters.skipped_connections;  // no light sample can meet a specular lobe
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      recorder.add(L, next_event(scene, hit, bsdf, guide, wo_world, beta, u_select, u_light, opt.strategies,
+      recorder.add(L, next_event(scene, hit, bsdf, guide, wo_world, s.beta, u_select, u_light, opt.strategies,
                                  counters));
     }
 
-    BsdfSample bs;
-    const float u_guide = guide.active() ? sampler.next_1d() : 0.f;
-    if (!sample_guided(bsdf, frame, guide, wo, u_guide, sampler.next_2d(), TransportMode::Radiance, bs)) break;
-    beta *= bs.weight;
-    prev_pdf_w = bs.pdf_w;
-    prev_delta = bs.delta;
-    const Vec3 wi_world = frame.to_world(bs.wi);
-    if (!bs.delta && recorder.on()) {
-      recorder.vertex(hit.p, wi_world, bs.pdf_w, pdf_w(bsdf, wo, bs.wi, TransportMode::Radiance),
-                      bs.weight * bs.pdf_w, beta);
+    RouletteOrSplit go_on;
+    if constexpr (kGuided) {
+      if (guiding.pixel_estimate > 0.f && leaf != nullptr) {
+        go_on = adjoint_roulette(average(s.beta), leaf->reflected, guiding.pixel_estimate, s.paths,
+                                 sampler.next_1d(), AdjointRouletteSettings{});
+        if (go_on.paths == 0) {
+          ++counters.roulette_stops;
+          return;
+        }
+        counters.split_paths += static_cast<uint64_t>(go_on.paths - 1);
+        s.beta *= go_on.scale;
+        s.paths *= go_on.paths;
+      }
     }
-    ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n), wi_world};
-
-    if (depth >= opt.rr_depth) {
-      const float q = std::min(max_component(beta), 0.95f);
-      if (!(sampler.next_1d() < q)) break;
-      beta /= q;
+    // The path leaves the vertex in a sampled direction: false where it ends there.
+    const auto leave = [&](CameraPathState& next) {
+      BsdfSample bs;
+      const float u_guide = guide.active() ? sampler.next_1d() : 0.f;
+      if (!sample_guided(bsdf, frame, guide, wo, u_guide, sampler.next_2d(), TransportMode::Radiance, bs)) return false;
+      next.beta *= bs.weight;
+      next.prev_pdf_w = bs.pdf_w;
+      next.prev_delta = bs.delta;
+      const Vec3 wi_world = frame.to_world(bs.wi);
+      if (!bs.delta && recorder.on()) {
+        recorder.vertex(hit.p, wi_world, bs.pdf_w, pdf_w(bsdf, wo, bs.wi, TransportMode::Radiance),
+                        bs.weight * bs.pdf_w, next.beta);
+      }
+      next.ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n),
+                     wi_world};
+      if (!go_on.known && next.depth >= opt.rr_depth) {
+        const float q = std::min(max_component(next.beta), 0.95f);
+        if (!(sampler.next_1d() < q)) return false;
+        next.beta /= q;
+      }
+      return true;
+    };
+    for (int i = 1; i < go_on.paths; ++i) {
+      CameraPathState split = s;
+      if (leave(split)) {
+        ++split.depth;
+        extend_path<kGuided>(scene, opt, sampler, counters, guiding, recorder, split, L);
+      }
     }
+    if (!leave(s)) return;
   }
+}
+
+// One camera path; returns its radiance estimate.
+template <bool kGuided, class Sampler>
+Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOptions& opt, Sampler& sampler,
+                 TraceCounters& counters, const PathGuiding& guiding) {
+  Color L(0.f);
+  std::conditional_t<kGuided, RadianceRecorder, NoRecorder> recorder(guiding.records);
+  CameraPathState start;
+  start.ray = camera_ray;
+  extend_path<kGuided>(scene, opt, sampler, counters, guiding, recorder, start, L);
   return L;
 }
 
 // The pixels' samples on `film`, guided by `guiding` (no tree and no collector: unguided, with
 // no guiding code compiled into the path).
+// pixel_estimates (when not null and not empty): each pixel's estimated value, for adjoint-driven roulette.
 RenderStats drive_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                        RenderControl& control, Film& film, const PathGuiding& guiding,
-                       RecordCollector* collector = nullptr) {
+                       RecordCollector* collector = nullptr, const std::vector<float>* pixel_estimates = nullptr) {
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, false,
                                   connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   const auto drive = [&](const auto& estimate) {
@@ -214,8 +269,28 @@ RenderStats drive_path(const Scene& scene, const PinholeCamera& camera, const Pa
   return drive([&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
     PathGuiding g = guiding;
     if (collector != nullptr) g.records = &collector->local();
+    if (pixel_estimates != nullptr && !pixel_estimates->empty()) {
+      const int px = std::clamp(static_cast<int>(x), 0, camera.width() - 1);
+      const int py = std::clamp(static_cast<int>(y), 0, camera.height() - 1);
+      g.pixel_estimate = (*pixel_estimates)[static_cast<size_t>(py) * camera.width() + px];
+    }
     return trace_path<true>(scene, scene.eye_ray(camera.generate_ray(x, y)), options, sampler, counters, g);
   });
+}
+
+// Each pixel's estimated value for adjoint-driven roulette: the training's last image blurred over
+// 3x3 pixels, at least 1 % of its mean (a pixel the training saw dark still has paths go on);
+// empty where the training left no image.
+std::vector<float> pixel_estimates(const std::vector<double>& image, const PinholeCamera& camera) {
+  if (image.empty()) return {};
+  const std::vector<double> blurred = box_blurred(image, camera.width(), camera.height(), 1);
+  double mean = 0.0;
+  for (const double v : blurred) mean += v;
+  mean /= static_cast<double>(blurred.size());
+  if (!(mean > 0.0) || !std::isfinite(mean)) return {};
+  std::vector<float> out(blurred.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(std::max(blurred[i], 0.01 * mean));
+  return out;
 }
 
 // Renders the image with the guide of `trained`, then adds the training's stats.
@@ -224,9 +299,14 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
   const TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
   const PathTracerOptions final_options = after_training(options, trained);
   RenderResult result{Film(camera.width(), camera.height()), {}};
+  const std::vector<float> estimates =
+      options.guide_adjoint_roulette ? pixel_estimates(trained.image, camera) : std::vector<float>();
   result.stats =
-      drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()});
+      drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()}, nullptr, &estimates);
   add_guiding_stats(result.stats, trained);
+  result.stats.guiding.adjoint_roulette = !estimates.empty();
+  result.stats.guiding.split_paths = result.stats.split_paths;
+  result.stats.guiding.roulette_stops = result.stats.roulette_stops;
   return result;
 }
 
@@ -234,12 +314,17 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
 
 TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                   RenderControl& control) {
-  return train_guide(scene, options, options, control,
+  std::vector<double> image;  // the last finished iteration's
+  TrainedGuide trained = train_guide(scene, options, options, control,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
                        const PathTracerOptions o = iteration_options(options, spp, seed);
                        Film scratch(camera.width(), camera.height());
-                       return drive_path(scene, camera, o, control, scratch, {tree}, &collector);
+                       const RenderStats s = drive_path(scene, camera, o, control, scratch, {tree}, &collector);
+                       if (!s.interrupted) image = film_luminance(scratch);
+                       return s;
                      });
+  trained.image = std::move(image);
+  return trained;
 }
 
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,

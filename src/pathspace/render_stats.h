@@ -16,12 +16,17 @@ struct TraceCounters {
   // Connections that needed no shadow ray: the scene is a convex enclosure holding the camera
   // (scene_features.h), so nothing can stand between two vertices that face each other.
   uint64_t skipped_shadow_rays = 0;
+  // Adjoint-driven roulette and splitting (guiding/adjoint_rr.h): paths it added, paths it stopped.
+  uint64_t split_paths = 0;
+  uint64_t roulette_stops = 0;
   // Not a count: whether this task's connections are known unoccluded (shadow_ray.h).
   bool unoccluded = false;
   TraceCounters& operator+=(const TraceCounters& o) {
     rays += o.rays;
     skipped_connections += o.skipped_connections;
     skipped_shadow_rays += o.skipped_shadow_rays;
+    split_paths += o.split_paths;
+    roulette_stops += o.roulette_stops;
     return *this;
   }
 };
@@ -39,6 +44,9 @@ struct GuidingStats {
   double bsdf_fraction = 1.0;  // the leaves' mean weighted by records (guiding/sd_tree.h)
   float bsdf_fraction_min = 1.f, bsdf_fraction_max = 1.f;
   bool stopped_by_records = false;  // the next iteration would have kept more than guide_max_records
+  bool adjoint_roulette = false;     // the image's paths played adjoint-driven roulette and splitting
+  uint64_t split_paths = 0;          // paths splitting added to the image's samples
+  uint64_t roulette_stops = 0;       // paths the roulette stopped
 };
 
 struct RenderStats {
@@ -48,6 +56,7 @@ struct RenderStats {
   uint64_t skipped_shadow_rays = 0;  // see TraceCounters
   bool unoccluded = false;           // connections were known unoccluded: no shadow rays at all
   uint64_t invalid_samples = 0;  // NaN/Inf path contributions, zeroed and counted
+  uint64_t split_paths = 0, roulette_stops = 0;  // see TraceCounters (guided path tracing only)
   uint32_t spp = 0;              // samples per pixel completed by every pixel
   double seconds = 0.0;
   bool interrupted = false;
@@ -68,17 +77,21 @@ class SharedTraceCounters {
     rays_.fetch_add(c.rays, std::memory_order_relaxed);
     skipped_connections_.fetch_add(c.skipped_connections, std::memory_order_relaxed);
     skipped_shadow_rays_.fetch_add(c.skipped_shadow_rays, std::memory_order_relaxed);
+    split_paths_.fetch_add(c.split_paths, std::memory_order_relaxed);
+    roulette_stops_.fetch_add(c.roulette_stops, std::memory_order_relaxed);
   }
   void into(RenderStats& stats) const {
     stats.rays = rays_.load();
     stats.skipped_connections = skipped_connections_.load();
     stats.skipped_shadow_rays = skipped_shadow_rays_.load();
+    stats.split_paths = split_paths_.load();
+    stats.roulette_stops = roulette_stops_.load();
     stats.unoccluded = unoccluded_;
   }
 
  private:
   bool unoccluded_;
-  std::atomic<uint64_t> rays_{0}, skipped_connections_{0}, skipped_shadow_rays_{0};
+  std::atomic<uint64_t> rays_{0}, skipped_connections_{0}, skipped_shadow_rays_{0}, split_paths_{0}, roulette_stops_{0};
 };
 
 struct RenderResult {

@@ -1,12 +1,13 @@
 // The SD-tree guide (guiding/): the quadtree's density integrates to one and is the density of
 // its samples; a tree is the same whatever order its records come in; the BSDF fraction is
-// learnt only from enough records.
+// learnt only from enough records; adjoint-driven roulette keeps the expectation.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "check.h"
 #include "core/rng.h"
+#include "guiding/adjoint_rr.h"
 #include "guiding/sd_tree.h"
 
 using namespace dualight;
@@ -72,6 +73,34 @@ TEST_CASE("quadtree_density_integrates_to_one_and_matches_its_samples") {
   double inv = 0.0;
   for (int k = 0; k < 200000; ++k) inv += 1.0 / d.pdf_w(d.sample({rng.next_float(), rng.next_float()}));
   CHECK_NEAR(inv / 200000 / (4.0 * kPi), 1.0, 0.02);
+  // The density sample() reports is pdf_w at its direction (the round trip lands in the same cell
+  // but within a float's rounding of a cell's edge).
+  int same = 0;
+  for (int k = 0; k < 100000; ++k) {
+    float pdf = 0.f;
+    const Vec3 w = d.sample({rng.next_float(), rng.next_float()}, &pdf);
+    same += pdf == d.pdf_w(w) ? 1 : 0;
+  }
+  CHECK(same >= 99990);
+}
+
+TEST_CASE("direction_to_square_agrees_with_libm") {
+  // The map's azimuth comes from a polynomial atan2: within two float steps of libm's near 1
+  // (1.2e-7 of the square, 7.5e-7 rad), far below the finest cell (1/65536).
+  Pcg32 rng(5, 6);
+  float worst = 0.f;
+  for (int k = 0; k < 1000000; ++k) {
+    const Vec3 w = square_to_direction({rng.next_float(), rng.next_float()});
+    float v = std::atan2(w.y, w.x) * (0.5f * kInvPi);
+    if (v < 0.f) v += 1.f;
+    float dv = std::abs(direction_to_square(w).v - v);
+    worst = std::max(worst, std::min(dv, 1.f - dv));
+  }
+  CHECK(worst <= 1.2e-7f);
+  CHECK(direction_to_square({1.f, 0.f, 0.f}).v == 0.f);
+  CHECK(direction_to_square({0.f, 1.f, 0.f}).v == doctest::Approx(0.25f));
+  CHECK(direction_to_square({-1.f, 0.f, 0.f}).v == doctest::Approx(0.5f));
+  CHECK(direction_to_square({0.f, -1.f, 0.f}).v == doctest::Approx(0.75f));
 }
 
 TEST_CASE("sd_tree_is_the_same_for_records_in_any_order") {
@@ -98,18 +127,58 @@ TEST_CASE("sd_tree_is_the_same_for_records_in_any_order") {
 
 TEST_CASE("bsdf_fraction_is_learnt_only_from_enough_records") {
   // Records sampled uniformly (pdf_sampled = pdf_bsdf = 1 / 4 pi) whose integrand is a sharp
-  // lobe: the guide matches it far better than the BSDF, so the least fraction allowed wins.
+  // lobe, judged with the guide of an earlier tree built from other records of the same lobe: the
+  // guide matches the lobe far better than the BSDF, so the fraction is low (not the least
+  // allowed: the earlier guide misses some of these records' bright outliers).
+  GuideRecords earlier = lobe_records(5000, Vec3(0.f, 0.f, 1.f), 10);
   GuideRecords many = lobe_records(5000, Vec3(0.f, 0.f, 1.f), 11);
   SdTreeSettings settings;
   settings.spatial_threshold = 1u << 30;
   settings.bsdf_fraction = 0.3f;
-  const SdTree guided(many, Vec3(0.f), Vec3(1.f), settings);
-  CHECK(guided.at(Vec3(0.5f)).bsdf_fraction == doctest::Approx(0.3f));
+  const SdTree previous(earlier, Vec3(0.f), Vec3(1.f), settings);
+  CHECK(previous.at(Vec3(0.5f)).bsdf_fraction == 1.f);  // the first tree: nothing to judge its guide by
+  const SdTree guided(many, Vec3(0.f), Vec3(1.f), settings, &previous);
+  CHECK(guided.at(Vec3(0.5f)).bsdf_fraction >= 0.3f);
+  CHECK(guided.at(Vec3(0.5f)).bsdf_fraction <= 0.5f);
   // Records whose integrand is the BSDF's own density: the guide adds nothing, fraction 1.
   GuideRecords flat = many;
   for (GuideRecord& r : flat) r.product = r.pdf_bsdf;
-  CHECK(SdTree(flat, Vec3(0.f), Vec3(1.f), settings).at(Vec3(0.5f)).bsdf_fraction == doctest::Approx(1.f));
+  CHECK(SdTree(flat, Vec3(0.f), Vec3(1.f), settings, &previous).at(Vec3(0.5f)).bsdf_fraction ==
+        doctest::Approx(1.f));
   // Fewer than 16 records that carried anything: no guiding.
   GuideRecords few(many.begin(), many.begin() + 10);
-  CHECK(SdTree(few, Vec3(0.f), Vec3(1.f), settings).at(Vec3(0.5f)).bsdf_fraction == 1.f);
+  CHECK(SdTree(few, Vec3(0.f), Vec3(1.f), settings, &previous).at(Vec3(0.5f)).bsdf_fraction == 1.f);
+}
+
+TEST_CASE("adjoint_roulette_keeps_the_expectation_and_its_bounds") {
+  const AdjointRouletteSettings s;  // window 5: [centre / 3, 5 centre / 3]
+  // Where an estimate is missing, the caller's own roulette applies.
+  CHECK(!adjoint_roulette(1.f, 0.f, 1.f, 1, 0.5f, s).known);
+  CHECK(!adjoint_roulette(1.f, 1.f, 0.f, 1, 0.5f, s).known);
+  // Centre = pixel / adjoint = 2: inside the window the path goes on as it is.
+  const RouletteOrSplit inside = adjoint_roulette(2.5f, 0.5f, 1.f, 1, 0.99f, s);
+  CHECK(inside.known);
+  CHECK(inside.paths == 1);
+  CHECK(inside.scale == 1.f);
+  // Far above: split into throughput / centre paths of 1 / n the throughput each, at most
+  // max_paths over the whole sample.
+  const RouletteOrSplit above = adjoint_roulette(9.f, 0.5f, 1.f, 1, 0.5f, s);
+  CHECK(above.paths == 5);
+  CHECK(above.scale == doctest::Approx(0.2f));
+  CHECK(adjoint_roulette(1000.f, 0.5f, 1.f, 1, 0.5f, s).paths == s.max_paths);
+  CHECK(adjoint_roulette(1000.f, 0.5f, 1.f, 8, 0.5f, s).paths == 2);
+  CHECK(adjoint_roulette(1000.f, 0.5f, 1.f, s.max_paths, 0.5f, s).paths == 1);
+  // Far below: survival max(min_survival, throughput / centre), the survivor's weight its
+  // reciprocal, so the expected weight stays 1 (the mean over a fine grid of u).
+  for (const float throughput : {0.5f, 0.01f}) {
+    double mean = 0.0;
+    const int n = 100000;
+    for (int k = 0; k < n; ++k) {
+      const RouletteOrSplit r = adjoint_roulette(throughput, 0.5f, 1.f, 1, (k + 0.5f) / n, s);
+      mean += r.paths * r.scale;
+    }
+    CHECK(mean / n == doctest::Approx(1.0).epsilon(1e-3));
+  }
+  const RouletteOrSplit low = adjoint_roulette(0.01f, 0.5f, 1.f, 1, 0.f, s);
+  CHECK(low.scale == doctest::Approx(1.f / s.min_survival));
 }
