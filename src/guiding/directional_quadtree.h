@@ -39,9 +39,10 @@ inline bool make_record(const Vec3& p, const Vec3& w, const Color& L, const Colo
          r.product >= 0.f && std::isfinite(r.pdf_bsdf);
 }
 
-// Sorts records as DirectionalQuadtree's constructor needs them.
+// Sorts records as DirectionalQuadtree's constructor needs them, from a fixed order (records of
+// equal codes keep theirs).
 inline void sort_by_square_code(GuideRecord* begin, GuideRecord* end) {
-  sort_records_by(begin, end, [](const GuideRecord& r) { return static_cast<uint64_t>(square_code(r.dir)); });
+  stable_sort_records_by(begin, end, [](const GuideRecord& r) { return square_code(r.dir); });
 }
 
 class DirectionalQuadtree {

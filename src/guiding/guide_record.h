@@ -9,10 +9,12 @@
 // Records are sorted by their contents before a guide is built, so the guide is the same
 // whatever order threads produced them in (records of equal contents are interchangeable).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <tuple>
 #include <vector>
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include "core/sampling.h"
@@ -36,19 +38,40 @@ inline bool operator<(const GuideRecord& a, const GuideRecord& b) {
 
 using GuideRecords = std::vector<GuideRecord>;
 
-// Sorts records by `key` (then by contents, for a total order whatever order they came in).
+// Reorders the n records at begin so that record i is the one that was at source(i).
+template <class Source>
+void gather_records(GuideRecord* begin, size_t n, const Source& source) {
+  GuideRecords moved(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) { moved[i] = begin[source(i)]; });
+  std::copy(moved.begin(), moved.end(), begin);
+}
+
+// Sorts records by `key` (then by contents, for a total order whatever order they came in):
+// sorts (key, index) pairs, comparing records only where keys tie, then moves each record once.
 template <class Key>
 void sort_records_by(GuideRecord* begin, GuideRecord* end, const Key& key) {
   struct Keyed {
     uint64_t key;
-    GuideRecord r;
+    uint32_t index;
   };
-  std::vector<Keyed> keyed(static_cast<size_t>(end - begin));
-  for (size_t i = 0; i < keyed.size(); ++i) keyed[i] = {key(begin[i]), begin[i]};
-  tbb::parallel_sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return a.key != b.key ? a.key < b.key : a.r < b.r;
+  const size_t n = static_cast<size_t>(end - begin);
+  std::vector<Keyed> keyed(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) { keyed[i] = {key(begin[i]), static_cast<uint32_t>(i)}; });
+  tbb::parallel_sort(keyed.begin(), keyed.end(), [begin](const Keyed& a, const Keyed& b) {
+    return a.key != b.key ? a.key < b.key : begin[a.index] < begin[b.index];
   });
-  for (size_t i = 0; i < keyed.size(); ++i) begin[i] = keyed[i].r;
+  gather_records(begin, n, [&](size_t i) { return keyed[i].index; });
+}
+
+// Sorts records that are in a fixed order by `key` alone, keeping that order among equal keys
+// (the result is then as fixed as the input): one sort of (key, index) integers.
+template <class Key>
+void stable_sort_records_by(GuideRecord* begin, GuideRecord* end, const Key& key) {
+  const size_t n = static_cast<size_t>(end - begin);
+  std::vector<uint64_t> keyed(n);
+  for (size_t i = 0; i < n; ++i) keyed[i] = (static_cast<uint64_t>(key(begin[i])) << 32) | i;
+  std::sort(keyed.begin(), keyed.end());
+  gather_records(begin, n, [&](size_t i) { return static_cast<uint32_t>(keyed[i]); });
 }
 
 // The scalar a guide learns from a colour seen through a throughput: the mean over channels of
