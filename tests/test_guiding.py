@@ -10,7 +10,7 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
 import pytest
@@ -157,24 +157,54 @@ def ctrl_c_raises() -> Iterator[None]:
     signal.signal(signal.SIGINT, previous)
 
 
-@pytest.mark.usefixtures("ctrl_c_raises")
-@pytest.mark.parametrize("transport", ["radiance", "importance"])
-def test_ctrl_c_stops_training_within_half_a_second(door: dualight.Scene, transport: str) -> None:
+def _interrupted_after(delay: float, call: Callable[[], object]) -> KeyboardInterrupt:
+    """Sends Ctrl-C `delay` seconds into `call`, checks that it stopped within 0.5 s of the
+    signal, and returns the KeyboardInterrupt it raised."""
     sent: list[float] = []
 
     def interrupt() -> None:
         sent.append(time.perf_counter())
         os.kill(os.getpid(), signal.SIGINT)
 
-    timer = threading.Timer(0.3, interrupt)
+    timer = threading.Timer(delay, interrupt)
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt) as caught:
-            dualight.train_guide(door, transport, spp=1 << 16, guiding={"training": 0.9})
+            call()
     finally:
         timer.cancel()
     assert sent and time.perf_counter() - sent[0] < 0.5
-    assert hasattr(caught.value, "partial_result")
+    return caught.value
+
+
+@pytest.mark.usefixtures("ctrl_c_raises")
+@pytest.mark.parametrize("transport", ["radiance", "importance"])
+def test_ctrl_c_stops_training_within_half_a_second(door: dualight.Scene, transport: str) -> None:
+    caught = _interrupted_after(
+        0.3, lambda: dualight.train_guide(door, transport, spp=1 << 16, guiding={"training": 0.9})
+    )
+    assert hasattr(caught, "partial_result")
+
+
+@pytest.mark.usefixtures("ctrl_c_raises")
+@pytest.mark.parametrize("method", ["path", "light"])
+def test_ctrl_c_during_training_keeps_the_last_iteration_image(
+    door: dualight.Scene, method: str
+) -> None:
+    """Interrupted while training, a guided render stops within 0.5 s and returns the last
+    finished training iteration's image (unbiased on its own), not an empty one."""
+    caught = _interrupted_after(
+        0.5,
+        lambda: dualight.render(
+            door, method, spp=1 << 16, guiding={"training": 0.9}, progress=False
+        ),
+    )
+    image = caught.partial_result  # type: ignore[attr-defined]
+    g = image.stats["guiding"]
+    assert image.stats["interrupted"] and g["iterations"] >= 1
+    assert image.stats["spp"] == 1 << (g["iterations"] - 1)  # the last finished iteration's
+    assert float(np.asarray(image).mean()) > 0.0
+    assert image.stats["seconds"] == pytest.approx(g["training_seconds"])
 
 
 def test_a_progress_callback_error_reaches_the_caller(door: dualight.Scene) -> None:

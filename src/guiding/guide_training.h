@@ -9,7 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <vector>
+#include <optional>
+#include <utility>
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -49,8 +50,10 @@ struct TrainedGuide {
   std::shared_ptr<const SdTree> tree;  // null when no iteration finished
   GuidingStats stats;
   uint64_t rays = 0;  // traced by the iterations
-  // The last iteration's image, luminance per pixel (row-major), where the estimator keeps it.
-  std::vector<double> image;
+  // The last finished iteration's image (none when no iteration finished) and its stats: the
+  // roulette's pixel estimates, and what a render interrupted during training returns.
+  std::optional<Film> last_image;
+  RenderStats last_stats;
 };
 
 // The scene's box, grown a little so every vertex falls inside.
@@ -60,10 +63,11 @@ inline void guide_bounds(const Scene& scene, Vec3& lo, Vec3& hi) {
   hi = scene.bounds_max() + pad;
 }
 
-// run(spp, seed, guide, collector) renders one iteration (guide may be null) and returns its stats.
+// run(spp, seed, guide, collector, film) renders one iteration (guide may be null) on `film`
+// (width x height) and returns its stats.
 template <class RunIteration>
-TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g,
-                         RenderControl& control, const RunIteration& run) {
+TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g, int width,
+                         int height, RenderControl& control, const RunIteration& run) {
   TrainedGuide out;
   const Stopwatch elapsed;
   const double spp_budget = est.spp > 0 ? std::floor(g.guide_training * est.spp) : 0.0;
@@ -83,10 +87,13 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
     if (control.cancelled() || spp > (1u << 20)) break;
     const double start = elapsed();
     RecordCollector collector;
+    Film film(width, height);
     const RenderStats s = run(spp, hash_combine(est.seed, 0x67756964ull + static_cast<uint64_t>(k)), out.tree.get(),
-                              collector);
+                              collector, film);
     out.rays += s.rays;
     if (s.interrupted || control.cancelled()) break;
+    out.last_image = std::move(film);
+    out.last_stats = s;
     GuideRecords records = collector.take();
     last_records = records.size();
     SdTreeSettings settings;
@@ -136,6 +143,17 @@ inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {
   stats.guiding.rendering_seconds = stats.seconds;
   stats.seconds += trained.stats.training_seconds;
   stats.rays += trained.rays;
+}
+
+// What a render interrupted during training returns: the last finished iteration's image (an
+// empty film when none finished), with its counts and the training's time and rays.
+inline RenderResult interrupted_in_training(TrainedGuide&& trained, int width, int height) {
+  RenderResult r{trained.last_image ? std::move(*trained.last_image) : Film(width, height), trained.last_stats};
+  r.stats.seconds = 0.0;  // the iteration's time and rays are the training's, added below
+  r.stats.rays = 0;
+  r.stats.interrupted = true;
+  add_guiding_stats(r.stats, trained);
+  return r;
 }
 
 }  // namespace dualight

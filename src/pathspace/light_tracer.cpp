@@ -169,7 +169,8 @@ RenderStats drive_light(const Scene& scene, const PinholeCamera& camera, const L
 // Renders the image with the guide of `trained`, then adds the training's stats.
 RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                                  RenderControl& control) {
-  const TrainedGuide trained = train_importance_guide(scene, camera, options, control);
+  TrainedGuide trained = train_importance_guide(scene, camera, options, control);
+  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
   const LightTracerOptions final_options = after_training(options, trained);
   RenderResult result{Film(camera.width(), camera.height()), {}};
   result.stats = drive_light(scene, camera, final_options, control, result.film,
@@ -183,14 +184,13 @@ RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera
 TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& camera,
                                     const LightTracerOptions& options, RenderControl& control) {
   PixelImportance pixel_weight;  // uniform until an iteration's image is there
-  return train_guide(scene, options, options, control,
-                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
+  return train_guide(scene, options, options, camera.width(), camera.height(), control,
+                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
                        const LightTracerOptions o = iteration_options(options, spp, seed);
-                       Film scratch(camera.width(), camera.height());
-                       const RenderStats s = drive_light(scene, camera, o, control, scratch,
-                                                         {{tree}, &collector, &pixel_weight});
+                       const RenderStats s =
+                           drive_light(scene, camera, o, control, film, {{tree}, &collector, &pixel_weight});
                        pixel_weight =
-                           PixelImportance(film_luminance(scratch), camera.width(), camera.height(), 2, 0.01);
+                           PixelImportance(film_luminance(film), camera.width(), camera.height(), 2, 0.01);
                        return s;
                      });
 }

@@ -139,6 +139,22 @@ struct CameraPathState {
   int paths = 1;            // how many paths splitting has made of the camera sample so far
 };
 
+// Adjoint-driven roulette and splitting (adjoint_rr.h) for a path at a vertex of `leaf`, in a
+// pixel of estimated value `pixel`: scales the path's throughput and counts its paths.
+inline RouletteOrSplit roulette_or_split(const SdTree::Leaf& leaf, float pixel, float u, CameraPathState& s,
+                                         TraceCounters& counters) {
+  const RouletteOrSplit go_on =
+      adjoint_roulette(average(s.beta), leaf.reflected, pixel, s.paths, u, AdjointRouletteSettings{});
+  if (go_on.paths == 0) {
+    ++counters.roulette_stops;
+    return go_on;
+  }
+  counters.split_paths += static_cast<uint64_t>(go_on.paths - 1);
+  s.beta *= go_on.scale;
+  s.paths *= go_on.paths;
+  return go_on;
+}
+
 // Follows a camera path from state s, adding what it finds to L; where adjoint-driven roulette
 // splits it, the extra paths are followed by recursion. kGuided compiles the guide's sampling,
 // records and roulette in.
@@ -192,15 +208,8 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
     RouletteOrSplit go_on;
     if constexpr (kGuided) {
       if (guiding.pixel_estimate > 0.f && leaf != nullptr) {
-        go_on = adjoint_roulette(average(s.beta), leaf->reflected, guiding.pixel_estimate, s.paths,
-                                 sampler.next_1d(), AdjointRouletteSettings{});
-        if (go_on.paths == 0) {
-          ++counters.roulette_stops;
-          return;
-        }
-        counters.split_paths += static_cast<uint64_t>(go_on.paths - 1);
-        s.beta *= go_on.scale;
-        s.paths *= go_on.paths;
+        go_on = roulette_or_split(*leaf, guiding.pixel_estimate, sampler.next_1d(), s, counters);
+        if (go_on.paths == 0) return;
       }
     }
     // The path leaves the vertex in a sampled direction: false where it ends there.
@@ -296,11 +305,13 @@ std::vector<float> pixel_estimates(const std::vector<double>& image, const Pinho
 // Renders the image with the guide of `trained`, then adds the training's stats.
 RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                 RenderControl& control) {
-  const TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
+  TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
+  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
   const PathTracerOptions final_options = after_training(options, trained);
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  const std::vector<float> estimates =
-      options.guide_adjoint_roulette ? pixel_estimates(trained.image, camera) : std::vector<float>();
+  const std::vector<float> estimates = options.guide_adjoint_roulette && trained.last_image
+                                           ? pixel_estimates(film_luminance(*trained.last_image), camera)
+                                           : std::vector<float>();
   result.stats =
       drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()}, nullptr, &estimates);
   add_guiding_stats(result.stats, trained);
@@ -314,17 +325,11 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
 
 TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                   RenderControl& control) {
-  std::vector<double> image;  // the last finished iteration's
-  TrainedGuide trained = train_guide(scene, options, options, control,
-                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector) {
+  return train_guide(scene, options, options, camera.width(), camera.height(), control,
+                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
                        const PathTracerOptions o = iteration_options(options, spp, seed);
-                       Film scratch(camera.width(), camera.height());
-                       const RenderStats s = drive_path(scene, camera, o, control, scratch, {tree}, &collector);
-                       if (!s.interrupted) image = film_luminance(scratch);
-                       return s;
+                       return drive_path(scene, camera, o, control, film, {tree}, &collector);
                      });
-  trained.image = std::move(image);
-  return trained;
 }
 
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
