@@ -6,17 +6,13 @@ test_pathspace_vs_mitsuba.py (``*_guided``)."""
 from __future__ import annotations
 
 import math
-import os
-import signal
-import threading
-import time
-from collections.abc import Callable, Iterator
 
 import numpy as np
 import pytest
 
 import dualight
 from chi2 import chi2_sf, pearson, sidak
+from ctrl_c import interrupted
 from dualight import scenes
 
 ALPHA = 0.01
@@ -150,39 +146,13 @@ def test_adjoint_roulette_says_what_it_did(door: dualight.Scene) -> None:
     assert not g["adjoint_roulette"] and g["split_paths"] == 0
 
 
-@pytest.fixture
-def ctrl_c_raises() -> Iterator[None]:
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
-def _interrupted_after(delay: float, call: Callable[[], object]) -> KeyboardInterrupt:
-    """Sends Ctrl-C `delay` seconds into `call`, checks that it stopped within 0.5 s of the
-    signal, and returns the KeyboardInterrupt it raised."""
-    sent: list[float] = []
-
-    def interrupt() -> None:
-        sent.append(time.perf_counter())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(delay, interrupt)
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt) as caught:
-            call()
-    finally:
-        timer.cancel()
-    assert sent and time.perf_counter() - sent[0] < 0.5
-    return caught.value
-
-
 @pytest.mark.usefixtures("ctrl_c_raises")
 @pytest.mark.parametrize("transport", ["radiance", "importance"])
 def test_ctrl_c_stops_training_within_half_a_second(door: dualight.Scene, transport: str) -> None:
-    caught = _interrupted_after(
-        0.3, lambda: dualight.train_guide(door, transport, spp=1 << 16, guiding={"training": 0.9})
+    caught, latency = interrupted(
+        lambda: dualight.train_guide(door, transport, spp=1 << 16, guiding={"training": 0.9}), 0.3
     )
+    assert latency < 0.5
     assert hasattr(caught, "partial_result")
 
 
@@ -193,12 +163,13 @@ def test_ctrl_c_during_training_keeps_the_last_iteration_image(
 ) -> None:
     """Interrupted while training, a guided render stops within 0.5 s and returns the last
     finished training iteration's image (unbiased on its own), not an empty one."""
-    caught = _interrupted_after(
-        0.5,
+    caught, latency = interrupted(
         lambda: dualight.render(
             door, method, spp=1 << 16, guiding={"training": 0.9}, progress=False
         ),
+        0.5,
     )
+    assert latency < 0.5
     image = caught.partial_result  # type: ignore[attr-defined]
     g = image.stats["guiding"]
     assert image.stats["interrupted"] and g["iterations"] >= 1

@@ -6,47 +6,25 @@ into the call and measures how long the call takes to raise KeyboardInterrupt.""
 
 from __future__ import annotations
 
-import os
-import signal
-import threading
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 import numpy as np
 import pytest
 
 import dualight
+from ctrl_c import interrupted
 from dualight import _core, scenes
 from dualight.radiosity import HierarchicalSolver, PatchMesh, form_factors
 
 LATENCY = 0.5
 
 
-@pytest.fixture(autouse=True)
-def ctrl_c_raises() -> Iterator[None]:
-    """Python's own SIGINT handler (a background shell may have left SIGINT ignored)."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
+pytestmark = pytest.mark.usefixtures("ctrl_c_raises")
 
 
 def _latency_of_ctrl_c(call: Callable[[], object], after: float = 0.3) -> float:
     """Seconds from SIGINT (sent ``after`` s into ``call``) to its KeyboardInterrupt."""
-    sent: list[float] = []
-
-    def interrupt() -> None:
-        sent.append(time.perf_counter())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(after, interrupt)
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            call()
-    finally:
-        timer.cancel()
-    assert sent, "the call ended before the interrupt was sent: make it longer"
-    return time.perf_counter() - sent[0]
+    return interrupted(call, after)[1]
 
 
 def _dense_system(n: int) -> _core.RadiositySystem:

@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-import os
-import signal
-import threading
 import time
 
 import numpy as np
 import pytest
 
 import dualight
+from ctrl_c import interrupted
 from dualight import metrics, scenes
 
 
@@ -125,34 +123,19 @@ def test_progress_bar_follows_a_new_total() -> None:
     bar.close()
 
 
-@pytest.fixture
-def ctrl_c_raises():
-    """Python's own SIGINT handler for the test: a process started in the background by a
-    non-interactive shell inherits SIGINT as ignored, and then Ctrl-C never arrives."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
 @pytest.mark.parametrize("method", dualight.METHODS)
 @pytest.mark.usefixtures("ctrl_c_raises")
 def test_ctrl_c_stops_within_half_a_second_and_keeps_the_partial_image(method: str) -> None:
     scene = scenes.cornell_box(resolution=(64, 64))
-    sent: list[float] = []
-
-    def interrupt() -> None:
-        sent.append(time.perf_counter())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(0.4, interrupt)
-    timer.start()
-    with pytest.raises(KeyboardInterrupt) as info:
-        depth = {"max_depth": 8} if method == "mmlt" else {}  # MMLT: chains per path length
-        dualight.render(scene, method, spp=1_000_000, time_limit=20.0, progress=False, **depth)
-    latency = time.perf_counter() - sent[0]
-    timer.join()
+    depth = {"max_depth": 8} if method == "mmlt" else {}  # MMLT: chains per path length
+    caught, latency = interrupted(
+        lambda: dualight.render(
+            scene, method, spp=1_000_000, time_limit=20.0, progress=False, **depth
+        ),
+        0.4,
+    )
     assert latency < 0.5, f"took {latency:.3f} s to stop"
-    partial = info.value.partial_result  # type: ignore[attr-defined]
+    partial = caught.partial_result  # type: ignore[attr-defined]
     assert isinstance(partial, dualight.Image) and partial.stats["interrupted"]
     # MLT may be stopped before its first mutation; its separately rendered direct light stays.
     assert partial.stats["samples"] > 0 or np.any(np.asarray(partial) > 0)
