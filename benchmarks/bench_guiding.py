@@ -1,7 +1,8 @@
-"""Path guiding at equal time (issue 22): the path tracer guided by radiance and the light
-tracer guided by importance (``render(..., guiding=True)``: training included in the time)
-against the unguided ones, BDPT and path-space MLT, on the door, the caustic box and the
-Cornell box, against their Mitsuba 3 references (64x64, ``max_depth`` as each reference).
+"""Path guiding at equal time (issue 22): the path tracer guided by radiance, the light
+tracer guided by importance and BDPT guided by both (``render(..., guiding=True)``: training
+included in the time) against the unguided ones and path-space MLT, on the door, the caustic
+box and the Cornell box, against their Mitsuba 3 references (64x64, ``max_depth`` as each
+reference).
 
 relMSE (reference noise removed) and Delta E 2000 against the measured seconds, at every budget
 and ``--seeds`` seeds; the equal-time efficiency ratios (1 / (relMSE x seconds)) at the longest
@@ -12,7 +13,7 @@ without its cost.
 Writes ``benchmarks/results/bench_guiding.json`` and ``bench_guiding.png``; ``--quick`` writes
 ``*_quick`` files (git ignores them).
 
-    python benchmarks/bench_guiding.py                # budgets 1,4,8 s, 3 seeds: about 10 minutes
+    python benchmarks/bench_guiding.py                # budgets 1,4,8 s, 3 seeds: about 15 minutes
     python benchmarks/bench_guiding.py --quick        # a smoke run
 """
 
@@ -39,14 +40,17 @@ bench_mlt.VARIANTS.update(
     {
         "path_guided": ("path", {"guiding": True}),
         "light_guided": ("light", {"guiding": True}),
+        "bdpt_guided": ("bdpt", {"guiding": True}),
     }
 )
-METHODS = ("path", "path_guided", "light", "light_guided", "bdpt", "mlt")
+METHODS = ("path", "path_guided", "light", "light_guided", "bdpt", "bdpt_guided", "mlt")
 RATIOS = [
     ("path_guided", "path"),
     ("light_guided", "light"),
+    ("bdpt_guided", "bdpt"),
     ("path_guided", "bdpt"),
     ("path_guided", "mlt"),
+    ("bdpt_guided", "mlt"),
     ("light_guided", "bdpt"),
 ]
 NAMES = ("door", "caustics", "cornell")
@@ -63,6 +67,8 @@ def per_sample(name: str, spp: int, seeds: int) -> dict[str, Any]:
         ("path_guided", {"guiding": True}),
         ("light", {}),
         ("light_guided", {"guiding": True}),
+        ("bdpt", {}),
+        ("bdpt_guided", {"guiding": True}),
     ):
         real = method.split("_")[0]
         rows = []

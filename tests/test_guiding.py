@@ -90,20 +90,27 @@ def test_a_wrong_density_fails_the_same_chi_square(cornell: dualight.Scene) -> N
     assert p < sidak(ALPHA, 2 * LEAVES_TESTED)
 
 
-@pytest.mark.parametrize("method", ["path", "light"])
+def _without_seconds(g: dict) -> dict:
+    """A guiding stats dict without its timings (guided BDPT's: both guides')."""
+    return {
+        k: _without_seconds(v) if isinstance(v, dict) else v
+        for k, v in g.items()
+        if k not in ("training_seconds", "rendering_seconds")
+    }
+
+
+@pytest.mark.parametrize("method", ["path", "light", "bdpt"])
 def test_guided_renders_do_not_depend_on_the_thread_count(
     door: dualight.Scene, method: str
 ) -> None:
+    spp = 16 if method == "bdpt" else 32
     images = [
-        dualight.render(door, method, spp=32, seed=5, threads=t, guiding=True, progress=False)
+        dualight.render(door, method, spp=spp, seed=5, threads=t, guiding=True, progress=False)
         for t in (1, 2)
     ]
     assert np.array_equal(np.asarray(images[0]), np.asarray(images[1]))
     assert np.array_equal(images[0].variance, images[1].variance)
-    g0, g1 = (dict(im.stats["guiding"]) for im in images)
-    for g in (g0, g1):
-        for key in ("training_seconds", "rendering_seconds"):
-            g.pop(key)
+    g0, g1 = (_without_seconds(im.stats["guiding"]) for im in images)
     assert g0 == g1
 
 
@@ -123,10 +130,29 @@ def test_guided_stats_say_what_training_took(cornell: dualight.Scene, method: st
     assert "guiding" not in unguided.stats
 
 
+def test_guided_bdpt_stats_hold_both_guides(cornell: dualight.Scene) -> None:
+    """Guided BDPT trains a radiance guide (camera paths) and an importance guide (light
+    paths), each on half of the training share; stats hold both."""
+    image = dualight.render(
+        cornell, "bdpt", spp=64, seed=2, guiding={"training": 0.5}, progress=False
+    )
+    stats = image.stats
+    g = stats["guiding"]
+    assert stats["spp"] == 64
+    for guide in (g["radiance"], g["importance"]):
+        assert guide["iterations"] == 4 and guide["training_spp"] == 15  # 1 + 2 + 4 + 8 <= 16
+        assert guide["spatial_leaves"] >= 1 and guide["records"] > 0
+        assert 0.5 <= guide["bsdf_fraction_min"] <= guide["bsdf_fraction_max"] <= 1.0
+    training = g["radiance"]["training_seconds"] + g["importance"]["training_seconds"]
+    assert g["training_seconds"] == pytest.approx(training)
+    assert stats["seconds"] == pytest.approx(training + g["rendering_seconds"])
+
+
 def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
-    """With the BSDF always chosen the guide draws no random number: the unguided image."""
+    """With the BSDF always chosen the guide draws no random number and changes no density:
+    the unguided image (BDPT: its MIS weights too)."""
     fixed = {"learn_bsdf_fraction": False, "bsdf_fraction": 1.0, "adjoint_roulette": False}
-    for method in ("path", "light"):
+    for method in ("path", "light", "bdpt"):
         guided = dualight.render(cornell, method, spp=16, seed=4, guiding=fixed, progress=False)
         plain = dualight.render(cornell, method, spp=16, seed=4, progress=False)
         assert np.array_equal(np.asarray(guided), np.asarray(plain))
@@ -157,7 +183,7 @@ def test_ctrl_c_stops_training_within_half_a_second(door: dualight.Scene, transp
 
 
 @pytest.mark.usefixtures("ctrl_c_raises")
-@pytest.mark.parametrize("method", ["path", "light"])
+@pytest.mark.parametrize("method", ["path", "light", "bdpt"])
 def test_ctrl_c_during_training_keeps_the_last_iteration_image(
     door: dualight.Scene, method: str
 ) -> None:
@@ -172,8 +198,11 @@ def test_ctrl_c_during_training_keeps_the_last_iteration_image(
     assert latency < 0.5
     image = caught.partial_result  # type: ignore[attr-defined]
     g = image.stats["guiding"]
-    assert image.stats["interrupted"] and g["iterations"] >= 1
-    assert image.stats["spp"] == 1 << (g["iterations"] - 1)  # the last finished iteration's
+    # Guided BDPT is interrupted while training its radiance guide (the first): the path
+    # tracer's last iteration.
+    guide = g["radiance"] if method == "bdpt" else g
+    assert image.stats["interrupted"] and guide["iterations"] >= 1
+    assert image.stats["spp"] == 1 << (guide["iterations"] - 1)  # the last finished iteration's
     assert float(np.asarray(image).mean()) > 0.0
     assert image.stats["seconds"] == pytest.approx(g["training_seconds"])
 
@@ -190,8 +219,8 @@ def test_a_progress_callback_error_reaches_the_caller(door: dualight.Scene) -> N
 
 
 def test_bad_guiding_input_is_named(cornell: dualight.Scene) -> None:
-    with pytest.raises(ValueError, match="guiding applies to method 'path', 'light' only"):
-        dualight.render(cornell, "bdpt", spp=4, guiding=True, progress=False)
+    with pytest.raises(ValueError, match="guiding applies to method 'path', 'light', 'bdpt' only"):
+        dualight.render(cornell, "pssmlt", spp=4, guiding=True, progress=False)
     with pytest.raises(TypeError, match="unknown guiding option 'trainig'"):
         dualight.render(cornell, "path", spp=4, guiding={"trainig": 0.5}, progress=False)
     with pytest.raises(TypeError, match="guiding must be True, False or a dict"):

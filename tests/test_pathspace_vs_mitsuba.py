@@ -253,31 +253,43 @@ CASES = {
     # On the door the guided path tracer's tails are heavier than the unguided one's (a path
     # through the gap that the guide missed weighs 1 / bsdf_fraction more at every guided
     # vertex): its 4x4 blocks fall low (z to -6.0, 3 seeds at 1536 spp, 8x8 blocks within 2.6,
-    # seed 21's to -4.2), so it is judged on 16x16 blocks.
+    # seed 21's to -4.2), so it is judged on 16x16 blocks. Guided BDPT (both guides, MIS
+    # with the mixtures' densities both ways) is judged as unguided BDPT.
     "cornell_guided": Case(
         "cornell_64",
         lambda **kw: scenes.cornell_box(resolution=(64, 64), **kw),
         {"light_scale": 0.97},
-        {"path": 1024, "light": 1024},
+        {"path": 1024, "light": 1024, "bdpt": 512},
         options={"guiding": True},
     ),
     "caustics_guided": Case(
         "caustics_64",
         lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="caustics", **kw),
         {"light_scale": 0.97},
-        {"path": 2048, "light": 2048},
-        {"path": LARGE_BLOCKS},
+        {"path": 2048, "light": 2048, "bdpt": 512},
+        {"path": LARGE_BLOCKS, "bdpt": LARGE_BLOCKS},
         options={"guiding": True},
-        long=("path", "light"),
+        long=("path", "light", "bdpt"),
     ),
     "door_guided": Case(
         "door_64",
         lambda **kw: scenes.door_ajar(resolution=(64, 64), **kw),
         {"light_scale": 0.9},
-        {"path": 1536, "light": 2048},
-        {"path": LARGE_BLOCKS, "light": BLOCKS},
+        {"path": 1536, "light": 2048, "bdpt": 512},
+        {"path": LARGE_BLOCKS, "light": BLOCKS, "bdpt": BLOCKS},
         options={"guiding": True},
-        long=("path", "light"),
+        long=("path", "light", "bdpt"),
+    ),
+    # Guided BDPT through glossy lobes (the mixtures' densities at rough conductors, rough
+    # glass and rough plastic in both MIS directions); judged as unguided BDPT there.
+    "glossy_guided": Case(
+        "glossy_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), variant="glossy", **kw),
+        {"roughness_scale": 1.2},
+        {"bdpt": 128},
+        {"bdpt": LARGE_BLOCKS},
+        options={"guiding": True},
+        long=("bdpt",),
     ),
 }
 RUNS = [

@@ -689,8 +689,8 @@ class BdptOptions:
     """
     Options of bidirectional path tracing.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -706,6 +706,14 @@ class BdptOptions:
         heuristic: How the strategies' samples are weighted (MIS).
         strategies: mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample each path; light: s = 1 first, then s = 0, 2, 3, ...
         strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
+        guiding: Train a guide first, then sample directions from it (guiding/).
+        guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        guide_rho: A directional node holding more than this share of its leaf's value is split.
+        guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
     def __repr__(self) -> str:
         ...
@@ -713,6 +721,46 @@ class BdptOptions:
     def first_sample(self) -> int:
         """
         First sample index rendered (one task of a split render; see Film).
+        """
+    @property
+    def guide_adjoint_roulette(self) -> bool:
+        """
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        """
+    @property
+    def guide_bsdf_fraction(self) -> float:
+        """
+        Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_learn_bsdf_fraction(self) -> bool:
+        """
+        Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
+        """
+    @property
+    def guide_max_records(self) -> int:
+        """
+        Records one training iteration may keep (24 bytes each); training stops before more.
+        """
+    @property
+    def guide_rho(self) -> float:
+        """
+        A directional node holding more than this share of its leaf's value is split.
+        """
+    @property
+    def guide_spatial_threshold(self) -> int:
+        """
+        Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
+        """
+    @property
+    def guide_training(self) -> float:
+        """
+        Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guiding(self) -> bool:
+        """
+        Train a guide first, then sample directions from it (guiding/).
         """
     @property
     def heuristic(self) -> MisHeuristic:

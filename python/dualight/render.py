@@ -323,10 +323,14 @@ def render(
         (and ``chains`` and ``start_up_seconds`` for the Metropolis methods).
 
     guiding:
-        ``"path"`` and ``"light"``: path guiding (Müller, Gross and Novák 2017). ``True``
-        first trains a guide in iterations of 1, 2, 4, ... samples per pixel, each guided by
-        the last: for ``"path"`` the radiance that camera paths found, for ``"light"`` the
-        importance that light paths carried to the camera (where a particle will be seen).
+        ``"path"``, ``"light"`` and ``"bdpt"``: path guiding (Müller, Gross and Novák 2017).
+        ``True`` first trains a guide in iterations of 1, 2, 4, ... samples per pixel, each
+        guided by the last: for ``"path"`` the radiance that camera paths found, for
+        ``"light"`` the importance that light paths carried to the camera (where a particle
+        will be seen); ``"bdpt"`` trains both (each on half the training share), samples
+        camera subpaths from the radiance guide and light subpaths from the importance
+        guide, and weighs its strategies by MIS with the guided densities in both directions
+        (Vorba et al. 2014); its ``stats["guiding"]`` holds ``radiance`` and ``importance``.
         The image is then rendered sampling each direction from the guide or the BSDF (one-
         sample MIS), so it stays unbiased; for ``"path"`` its paths also play adjoint-driven
         Russian roulette and splitting (Vorba and Křivánek 2016): a path whose expected

@@ -65,8 +65,9 @@ void bind_pathspace(py::module_& m) {
              "mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample "
              "each path; light: s = 1 first, then s = 0, 2, 3, ...")
       .field("strategy_images", &BdptOptions::strategy_images,
-             "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).")
-      .bind();
+             "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).");
+  add_guiding_fields(bdpt);
+  bdpt.bind();
 
   m.def(
       "render_light",

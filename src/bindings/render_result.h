@@ -54,7 +54,16 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
   d["interrupted"] = s.interrupted;
   d["time_limited"] = s.time_limited;
-  if (s.guiding.used) d["guiding"] = guiding_dict(s.guiding);
+  if (s.guiding.used && s.importance_guiding.used) {
+    py::dict g;  // guided BDPT: two guides
+    g["training_seconds"] = s.guiding.training_seconds + s.importance_guiding.training_seconds;
+    g["rendering_seconds"] = s.guiding.rendering_seconds;
+    g["radiance"] = guiding_dict(s.guiding);
+    g["importance"] = guiding_dict(s.importance_guiding);
+    d["guiding"] = g;
+  } else if (s.guiding.used) {
+    d["guiding"] = guiding_dict(s.guiding);
+  }
   return d;
 }
 

@@ -145,6 +145,16 @@ inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {
   stats.rays += trained.rays;
 }
 
+// Guided BDPT's stats: both guides', and both trainings' time and rays in the render's.
+inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& radiance, const TrainedGuide& importance) {
+  add_guiding_stats(stats, radiance);
+  stats.importance_guiding = importance.stats;
+  stats.importance_guiding.used = true;
+  stats.importance_guiding.rendering_seconds = stats.guiding.rendering_seconds;
+  stats.seconds += importance.stats.training_seconds;
+  stats.rays += importance.rays;
+}
+
 // What a render interrupted during training returns: the last finished iteration's image (an
 // empty film when none finished), with its counts and the training's time and rays.
 inline RenderResult interrupted_in_training(TrainedGuide&& trained, int width, int height) {

@@ -6,6 +6,13 @@
 // directly; -1: unbounded, then Russian roulette from rr_depth ends subpaths). Use it where paths
 // are hard to find from one side: caustics (light -> specular -> diffuse -> eye) and light
 // arriving through small openings.
+//
+// With `guiding` (guided BDPT), a radiance guide and an importance guide are trained first (the
+// path tracer's and the light tracer's training, guiding/guide_training.h, each on half of the
+// training share); camera subpaths then sample directions from the radiance guide, light
+// subpaths from the importance guide, each mixed with BSDF sampling, and the MIS weights use the
+// mixtures' densities in both directions: pdf_fwd from a subpath's own guide, pdf_rev from the
+// other's [Vorba, Karlík, Šik, Ritschel, Křivánek 2014, sec. 6].
 #pragma once
 #include <cstdint>
 #include <stdexcept>
@@ -16,13 +23,14 @@
 #include "core/sampler.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "guiding/guiding_options.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/estimator_options.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
 
-struct BdptOptions : EstimatorOptions {
+struct BdptOptions : EstimatorOptions, GuidingOptions {
   MisHeuristic heuristic = MisHeuristic::Power;
   // All strategies by MIS, or one alone (s = 0 first or s = 1 first; strategies.h).
   Strategies strategies = Strategies::Mis;

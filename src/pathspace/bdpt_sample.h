@@ -48,15 +48,16 @@ void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const Bd
 }
 
 // `layers`: the film whose strategy layers receive the own-pixel contributions (only when
-// opt.strategy_images), else unused.
+// opt.strategy_images), else unused. `guides`: guided BDPT's (subpath.h), or none.
 template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
-                  Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers) {
+                  Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers,
+                  const SubpathGuides& guides = {}) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
   // The camera subpath continues the camera stream, which drew the film position.
-  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters);
+  camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters, guides.camera());
   sampler.start_stream(kLightStream);
-  light_subpath(scene, sampler, limits, paths.light, counters);
+  light_subpath(scene, sampler, limits, paths.light, counters, guides.light());
   sampler.start_stream(kConnectStream);
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
 
@@ -64,7 +65,7 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   for_each_strategy(scene, camera, opt, paths, sampler, counters,
                     [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
                       c *= mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, opt.heuristic,
-                                      opt.strategies);
+                                      opt.strategies, guides.any() ? &guides : nullptr);
                       if (t == 1) {
                         const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() +
                                                 static_cast<uint32_t>(raster.u);

@@ -4,20 +4,40 @@
 
 namespace dualight {
 
+float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
+               const SdTree* guide) {
+  if (guide == nullptr || v.type != VertexType::Surface) return pdf_area(camera, v, prev, next);
+  const Vec3 w = direction(v, next);
+  const float pdf_w = with_bsdf(v, [&](const Bsdf& b) {
+    const float pdf_bsdf = pdf_w_world(b, v.ns, direction(v, *prev), w, TransportMode::Radiance);
+    const VertexGuide g = vertex_guide(guide->at(v.p), b);
+    return g.active() ? g.mixture_pdf_w(pdf_bsdf, w) : pdf_bsdf;
+  });
+  return solid_angle_to_area(pdf_w, v, next);
+}
+
 float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
-                 const Vertex& sampled, int s, int t, MisHeuristic heuristic, Strategies strategies) {
+                 const Vertex& sampled, int s, int t, MisHeuristic heuristic, Strategies strategies,
+                 const SubpathGuides* guides) {
   if (s + t == 2) return 1.f;  // the only strategy kept for paths of one segment
+  const SdTree* radiance = guides != nullptr ? guides->radiance : nullptr;
+  const SdTree* importance = guides != nullptr ? guides->importance : nullptr;
   const Vertex* qs = s == 0 ? nullptr : (s == 1 ? &sampled : &light[s - 1]);
   const Vertex& pt = t == 1 ? sampled : cam[t - 1];
   const Vertex* qs_minus = s >= 2 ? &light[s - 2] : nullptr;
   const Vertex* pt_minus = t >= 2 ? &cam[t - 2] : nullptr;
 
   // Reverse densities at the connection under this strategy.
-  const float pt_rev = qs != nullptr ? pdf_area(camera, *qs, qs_minus, pt) : pdf_light_origin(scene, pt);
+  // The light subpath continuing through qs and pt samples the importance guide; the camera
+  // subpath continuing through pt and qs the radiance guide.
+  const float pt_rev =
+      qs != nullptr ? pdf_area(camera, *qs, qs_minus, pt, importance) : pdf_light_origin(scene, pt);
   float pt_minus_rev = 0.f;
-  if (pt_minus != nullptr) pt_minus_rev = qs != nullptr ? pdf_area(camera, pt, qs, *pt_minus) : pdf_light(pt, *pt_minus);
-  const float qs_rev = qs != nullptr ? pdf_area(camera, pt, pt_minus, *qs) : 0.f;
-  const float qs_minus_rev = qs_minus != nullptr ? pdf_area(camera, *qs, &pt, *qs_minus) : 0.f;
+  if (pt_minus != nullptr) {
+    pt_minus_rev = qs != nullptr ? pdf_area(camera, pt, qs, *pt_minus, importance) : pdf_light(pt, *pt_minus);
+  }
+  const float qs_rev = qs != nullptr ? pdf_area(camera, pt, pt_minus, *qs, radiance) : 0.f;
+  const float qs_minus_rev = qs_minus != nullptr ? pdf_area(camera, *qs, &pt, *qs_minus, radiance) : 0.f;
 
   const auto remap0 = [](float pdf) { return pdf != 0.f ? pdf : 1.f; };
   const auto h = [heuristic](float r) { return heuristic == MisHeuristic::Power ? r * r : r; };

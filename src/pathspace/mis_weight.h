@@ -5,17 +5,25 @@
 // 1 / (1 + sum of h(ratio)) with h the power (squared) or balance (identity) heuristic. Only the
 // four vertices at the connection need densities for this strategy; the rest are cached. With one
 // strategy alone (strategies.h), the weight is 1 for the most preferred strategy that can sample
-// the path and 0 for the others.
+// the path and 0 for the others. With guides (guided BDPT), a surface vertex's density of
+// continuing a subpath is its guide's mixture (guided_sampling.h): the radiance guide's where a
+// camera subpath continues, the importance guide's where a light subpath does.
 #pragma once
 #include "pathspace/path.h"
 #include "pathspace/strategies.h"
+#include "pathspace/subpath.h"
 
 namespace dualight {
 
 enum class MisHeuristic { Power, Balance };
 
+// pdf_area (path.h) where a surface vertex v samples from `guide` (null: none) mixed with its
+// BSDF, as a guided walk there does (subpath.h): the leaf at v.p, its BSDF fraction.
+float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
+               const SdTree* guide);
+
 float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
                  const Vertex& sampled, int s, int t, MisHeuristic heuristic,
-                 Strategies strategies = Strategies::Mis);
+                 Strategies strategies = Strategies::Mis, const SubpathGuides* guides = nullptr);
 
 }  // namespace dualight

@@ -61,7 +61,8 @@ struct RenderStats {
   double seconds = 0.0;
   bool interrupted = false;
   bool time_limited = false;     // stopped by time_limit before reaching spp
-  GuidingStats guiding;
+  GuidingStats guiding;  // the guide's (guided BDPT: the radiance guide's)
+  GuidingStats importance_guiding;  // guided BDPT's importance guide
 };
 
 // TraceCounters summed over threads, and the `unoccluded` setting handed to each task's own.

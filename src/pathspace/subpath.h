@@ -21,10 +21,26 @@ struct WalkLimits {
   int rr_depth = 5;
 };
 
-// A guide for a walk's directions (guiding/; null: BSDF sampling alone). Only the walk's own
-// densities (pdf_fwd) follow it.
+// A guide for a walk's directions (guiding/; null: BSDF sampling alone), and the guide of the
+// other transport direction, which a walk the other way would sample from: the reverse densities
+// (pdf_rev) follow it (null: the BSDF's alone), as bidirectional MIS needs them [Vorba et al.
+// 2014, sec. 6]. A walk for one estimator alone (the light tracer) leaves `reverse` null.
 struct WalkGuide {
   const SdTree* tree = nullptr;
+  const SdTree* reverse = nullptr;
+
+  bool any() const { return tree != nullptr || reverse != nullptr; }
+};
+
+// The two guides of guided BDPT: camera subpaths sample from the radiance guide, light subpaths
+// from the importance guide, and each one's reverse densities are the other's.
+struct SubpathGuides {
+  const SdTree* radiance = nullptr;
+  const SdTree* importance = nullptr;
+
+  bool any() const { return radiance != nullptr || importance != nullptr; }
+  WalkGuide camera() const { return {radiance, importance}; }
+  WalkGuide light() const { return {importance, radiance}; }
 };
 
 // An rr_depth no walk reaches: no Russian roulette (beta stays recomputable from the path, and
@@ -69,7 +85,14 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
       } else if (!sample(b, wo, sampler.next_2d(), mode, bs)) {
         return false;
       }
-      if (!bs.delta) pdf_rev_w = dualight::pdf_w(b, bs.wi, wo, mode);
+      if (bs.delta) return true;
+      pdf_rev_w = dualight::pdf_w(b, bs.wi, wo, mode);
+      if constexpr (kGuided) {
+        if (guide.reverse != nullptr) {
+          const VertexGuide r = vertex_guide(guide.reverse->at(cur.p), b);
+          if (r.active()) pdf_rev_w = r.mixture_pdf_w(pdf_rev_w, cur.wo);
+        }
+      }
       return true;
     });
     if (!sampled) return;
@@ -105,8 +128,7 @@ inline size_t max_vertices(int max_depth, int extra) {
 // The camera subpath through film position (x, y): the camera vertex, then surface vertices.
 template <class Sampler>
 void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, float y, Sampler& sampler,
-                    const WalkLimits& limits, Path& path,
-                   TraceCounters& counters) {
+                    const WalkLimits& limits, Path& path, TraceCounters& counters, const WalkGuide& guide = {}) {
   path.clear();
   const Ray ray = scene.eye_ray(camera.generate_ray(x, y));
   Vertex c;
@@ -117,8 +139,13 @@ void camera_subpath(const Scene& scene, const PinholeCamera& camera, float x, fl
   c.beta = Color(1.f);  // We / pdf = 1: camera rays sample importance exactly
   path.push_back(c);
   const size_t max_new = subpath_detail::max_vertices(limits.max_depth, 1) - 1;
-  subpath_detail::random_walk(scene, ray, sampler, Color(1.f), camera.pdf_w(ray.d), max_new, limits.rr_depth,
-                              TransportMode::Radiance, path, counters);
+  if (!guide.any()) {
+    subpath_detail::random_walk(scene, ray, sampler, Color(1.f), camera.pdf_w(ray.d), max_new, limits.rr_depth,
+                                TransportMode::Radiance, path, counters);
+  } else {
+    subpath_detail::random_walk<true>(scene, ray, sampler, Color(1.f), camera.pdf_w(ray.d), max_new,
+                                      limits.rr_depth, TransportMode::Radiance, path, counters, guide);
+  }
 }
 
 // A light subpath: a point on an emitter chosen by power, then a direction the emitter samples.
@@ -135,7 +162,7 @@ void light_subpath(const Scene& scene, Sampler& sampler, const WalkLimits& limit
   if (!sample_Le_direction(*y0.emitter, y0.pdf_fwd, y0.p, y0.uv, sampler.next_2d(), d)) return;
   const Vec3 origin = y0.on_surface() ? scene.spawn_origin(y0.p, y0.n) : (y0.at_infinity ? d.origin : y0.p);
   const Ray ray{origin, d.w};
-  if (guide.tree == nullptr) {
+  if (!guide.any()) {
     subpath_detail::random_walk(scene, ray, sampler, d.beta, d.pdf_w, max_vertices - 1, limits.rr_depth,
                                 TransportMode::Importance, path, counters);
   } else {

@@ -9,27 +9,9 @@
 #include "core/rng.h"
 #include "guiding/adjoint_rr.h"
 #include "guiding/sd_tree.h"
+#include "lobe_records.h"
 
 using namespace dualight;
-
-namespace {
-
-// Records at points in the unit cube whose values favour directions near `lobe` (and a few
-// bright outliers), as radiance through a window would.
-GuideRecords lobe_records(size_t n, const Vec3& lobe, uint64_t seed) {
-  Pcg32 rng(seed, 7);
-  GuideRecords records;
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 p{rng.next_float(), rng.next_float(), rng.next_float()};
-    const Vec3 w = square_to_direction({rng.next_float(), rng.next_float()});
-    const float c = std::max(0.f, dot(w, lobe));
-    const float value = std::pow(c, 20.f) * 100.f + 0.1f + (rng.next_float() < 1e-3f ? 50.f : 0.f);
-    records.push_back({p, direction_to_square(w), value, value, 0.25f * kInvPi, 0.25f * kInvPi});
-  }
-  return records;
-}
-
-}  // namespace
 
 TEST_CASE("quadtree_density_integrates_to_one_and_matches_its_samples") {
   GuideRecords records = lobe_records(20000, normalize(Vec3(0.3f, -0.5f, 0.8f)), 1);
