@@ -30,12 +30,16 @@ from typing import Any
 import numpy as np
 
 import dualight
+from dualight import scenes
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 import bench_mlt  # noqa: E402
 from bench_bdpt import RESULTS, SCENES  # noqa: E402
 
+# Veach's door scaled up: rooms(10), diffuse, so radiosity can seed its guides.
+SCENES["rooms10"] = ("rooms10_64", lambda: scenes.rooms(10, resolution=(64, 64)))
+SEEDED = ("path_seeded", "light_seeded", "bdpt_seeded")  # guide_from=solution, diffuse scenes
 bench_mlt.VARIANTS.update(
     {
         "path_guided": ("path", {"guiding": True}),
@@ -52,8 +56,25 @@ RATIOS = [
     ("path_guided", "mlt"),
     ("bdpt_guided", "mlt"),
     ("light_guided", "bdpt"),
+    ("path_seeded", "path_guided"),
+    ("light_seeded", "light_guided"),
+    ("bdpt_seeded", "bdpt_guided"),
 ]
-NAMES = ("door", "caustics", "cornell")
+NAMES = ("door", "caustics", "cornell", "rooms10")
+
+
+def add_seeded_variants(name: str) -> dict[str, Any]:
+    """The seeded variants of scene ``name`` (render(guide_from=solution) with a Gauss-Seidel
+    radiosity and importance solution of it, default patches); returns the solve's cost, which
+    the renders' seconds do not include."""
+    start = time.perf_counter()
+    solution = dualight.radiosity.solve(SCENES[name][1](), "gauss_seidel")
+    seconds = time.perf_counter() - start
+    seeded = {"guiding": True, "guide_from": solution}
+    for label in SEEDED:
+        bench_mlt.VARIANTS[label] = (label.split("_")[0], seeded)
+    print(f"  {name}: radiosity solve {seconds:.1f} s, {len(solution.patches)} patches")
+    return {"solve_seconds": seconds, "patches": len(solution.patches)}
 
 
 def per_sample(name: str, spp: int, seeds: int) -> dict[str, Any]:
@@ -107,7 +128,7 @@ def main() -> None:
     budgets = [float(b) for b in args.budgets.split(",")]
     methods = [m for m in args.methods.split(",") if m]
     names = [n for n in args.scenes.split(",") if n]
-    unknown = set(methods) - set(METHODS) | set(names) - set(SCENES)
+    unknown = set(methods) - set(METHODS) - set(SEEDED) | set(names) - set(SCENES)
     if unknown:
         parser.error(f"unknown scene or method: {', '.join(sorted(unknown))}")
     suffix = "_quick" if args.quick else ""
@@ -119,11 +140,17 @@ def main() -> None:
         "seeds": args.seeds,
         "methods": methods,
         "skipped_methods": skipped,
-        "not_run": {"rooms(10)": "no Mitsuba reference of rooms(10) yet"},
         "scenes": {},
     }
     for name in names:
-        entry = bench_mlt.scene_study(name, methods, budgets, args.seeds, skipped, RATIOS)
+        study = methods
+        seeding = None
+        if name == "rooms10":  # the issue's scene for the seeded variant
+            seeding = add_seeded_variants(name)
+            study = methods + [m for m in SEEDED if m not in methods]
+        entry = bench_mlt.scene_study(name, study, budgets, args.seeds, skipped, RATIOS)
+        if seeding is not None:
+            entry["radiosity_seeding"] = seeding
         entry["equal_spp"] = per_sample(name, args.spp, args.seeds)
         summary["scenes"][name] = entry
     bench_mlt.print_ratios(summary, max(budgets), RATIOS)
@@ -131,7 +158,7 @@ def main() -> None:
     summary["environment"]["wall_seconds"] = time.perf_counter() - start
     RESULTS.mkdir(parents=True, exist_ok=True)
     (RESULTS / f"bench_guiding{suffix}.json").write_text(json.dumps(summary, indent=2) + "\n")
-    bench_mlt.plot(summary, RESULTS / f"bench_guiding{suffix}.png", METHODS)
+    bench_mlt.plot(summary, RESULTS / f"bench_guiding{suffix}.png", (*METHODS, *SEEDED))
     print(f"wrote {RESULTS / f'bench_guiding{suffix}.json'} and bench_guiding{suffix}.png")
 
 

@@ -5,6 +5,7 @@ test_pathspace_vs_mitsuba.py (``*_guided``)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -245,3 +246,95 @@ def test_bad_guiding_input_is_named(cornell: dualight.Scene) -> None:
         pytest.raises(ValueError, match="guiding is not supported with executor"),
     ):
         dualight.render(cornell, "path", spp=16, guiding=True, executor=pool, progress=False)
+
+
+@pytest.fixture(scope="module")
+def cornell_solution(cornell: dualight.Scene) -> dualight.radiosity.Solution:
+    return dualight.radiosity.solve(cornell, "gauss_seidel", max_edge=110.0)
+
+
+def test_radiance_records_of_a_solution_point_at_the_light(
+    cornell: dualight.Scene, cornell_solution: dualight.radiosity.Solution
+) -> None:
+    """Seeded from radiosity, the radiance guide at floor points favours the ceiling light: its
+    density towards the light's centre (median over 16 points) is far above the cosine lobe's
+    (at most 1 / pi). Control: records of a solution whose every patch has the same radiosity
+    (no light to point at) do not favour it."""
+    lo, hi = (np.asarray(b) for b in cornell.bounds())
+    rng = np.random.default_rng(1)
+    n = 16
+    floor = np.stack(
+        [rng.uniform(100, 450, n), np.full(n, lo[1] + 1e-3), rng.uniform(100, 450, n)], axis=1
+    )
+    light = np.array([(lo[0] + hi[0]) / 2, hi[1] - 1.0, (lo[2] + hi[2]) / 2])
+    to_light = (light - floor) / np.linalg.norm(light - floor, axis=1)[:, None]
+
+    def median_density(solution: dualight.radiosity.Solution) -> float:
+        records = dualight.guiding.solution_records(solution, "radiance")
+        guide = dualight._core.guide_from_records(cornell._compile(), records)
+        return float(np.median(guide.pdf(floor.astype(np.float32), to_light.astype(np.float32))))
+
+    assert median_density(cornell_solution) > 1.0
+    flat = dataclasses.replace(cornell_solution, B=np.ones_like(cornell_solution.B))
+    assert median_density(flat) < 1.0 / np.pi
+
+
+@pytest.mark.parametrize("method", ["path", "light", "bdpt"])
+def test_guide_from_a_solution_seeds_the_first_iteration(
+    cornell: dualight.Scene, cornell_solution: dualight.radiosity.Solution, method: str
+) -> None:
+    """guide_from: the first training iteration samples the seeded guide(s), so the training's
+    paths and records differ from an unseeded one's, and the stats say so."""
+    options = {"training": 0.5}
+    seeded = dualight.render(
+        cornell,
+        method,
+        spp=8,
+        seed=3,
+        guiding=options,
+        guide_from=cornell_solution,
+        progress=False,
+    )
+    plain = dualight.render(cornell, method, spp=8, seed=3, guiding=options, progress=False)
+    g, g0 = seeded.stats["guiding"], plain.stats["guiding"]
+    assert g["seeding_seconds"] > 0.0
+    guides = (g["radiance"], g["importance"]) if method == "bdpt" else (g,)
+    unseeded = (g0["radiance"], g0["importance"]) if method == "bdpt" else (g0,)
+    for guide, other in zip(guides, unseeded, strict=True):
+        assert guide["seeded"] and not other["seeded"]
+        assert guide["iterations"] == other["iterations"] >= 1
+        # The seeded iterations' paths were sampled differently: so were their records.
+        assert (guide["records"], guide["directional_nodes"]) != (
+            other["records"],
+            other["directional_nodes"],
+        )
+
+
+def test_bad_guide_from_input_is_named(
+    cornell: dualight.Scene, cornell_solution: dualight.radiosity.Solution
+) -> None:
+    with pytest.raises(ValueError, match="guide_from seeds path guiding"):
+        dualight.render(cornell, "path", spp=4, guide_from=cornell_solution, progress=False)
+    with pytest.raises(TypeError, match="guide_from must be a dualight.radiosity.Solution"):
+        dualight.render(cornell, "path", spp=4, guiding=True, guide_from="x", progress=False)
+    hierarchical = dualight.radiosity.solve(cornell, "hierarchical", max_edge=280.0)
+    with pytest.raises(ValueError, match="form factors"):
+        dualight.render(cornell, "path", spp=4, guiding=True, guide_from=hierarchical)
+    primal = dualight.radiosity.solve(cornell, "gauss_seidel", max_edge=280.0, importance=False)
+    with pytest.raises(ValueError, match="importance=True"):
+        dualight.render(cornell, "light", spp=4, guiding=True, guide_from=primal)
+    compiled = cornell._compile()
+    good = dualight.guiding.solution_records(cornell_solution, "radiance", records=64)
+    for rows, message in (
+        (good[:, :6], r"shape \(N, 7\)"),
+        (good[:0], "number 1 to"),
+        (np.where(np.arange(7) == 6, np.nan, good), "finite"),
+        (np.where(np.arange(7) == 6, -1.0, good), "values >= 0"),
+        (np.where(np.arange(7) >= 3, 0.0, good), "non-zero directions"),
+    ):
+        with pytest.raises(ValueError, match=message):
+            dualight._core.guide_from_records(compiled, rows.astype(np.float32))
+    with pytest.raises(ValueError, match="bsdf_fraction"):
+        dualight._core.guide_from_records(compiled, good, bsdf_fraction=1.5)
+    with pytest.raises(ValueError, match="records must be an int"):
+        dualight.guiding.solution_records(cornell_solution, "radiance", records=0)

@@ -36,7 +36,7 @@ import numpy as np
 import pytest
 
 import dualight
-from dualight import metrics, scenes
+from dualight import metrics, radiosity, scenes
 from dualight.bench import REFERENCE_DIR as REFERENCES
 
 PASS = 0.9975  # the foundation's pass fraction: with 64 blocks, every block must pass
@@ -62,7 +62,9 @@ class Case:
     wrong: dict
     spp: dict[str, int]  # per method: enough for the negative control to fail
     judges: dict[str, Judge] = field(default_factory=dict)  # per method; default PIXELS
-    options: dict = field(default_factory=dict)  # more keywords of render
+    # More keywords of render; a callable value is called with the scene (a radiosity
+    # solution for guide_from, solved for the scene being rendered).
+    options: dict = field(default_factory=dict)
     long: tuple[str, ...] = ()  # methods left to make test-long, for make test's time
 
 
@@ -280,6 +282,19 @@ CASES = {
         options={"guiding": True},
         long=("path", "light", "bdpt"),
     ),
+    # Guides seeded from a radiosity and importance solution (render(guide_from=...)): the
+    # first training iteration samples them. Unbiased whatever the seed guide.
+    "cornell_seeded": Case(
+        "cornell_64",
+        lambda **kw: scenes.cornell_box(resolution=(64, 64), **kw),
+        {"light_scale": 0.97},
+        {"path": 1024, "light": 1024, "bdpt": 512},
+        options={
+            "guiding": True,
+            "guide_from": lambda scene: radiosity.solve(scene, "gauss_seidel", max_edge=110.0),
+        },
+        long=("light", "bdpt"),
+    ),
     # Guided BDPT through glossy lobes (the mixtures' densities at rough conductors, rough
     # glass and rough plastic in both MIS directions); judged as unguided BDPT there.
     "glossy_guided": Case(
@@ -334,6 +349,7 @@ def _compare(case: Case, method: str, seed: int, **wrong) -> Outcome:
     judge = case.judges.get(method, PIXELS)
     ref, ref_var, info = _reference(case.reference)
     scene = case.build(**wrong)
+    options = {k: v(scene) if callable(v) else v for k, v in case.options.items()}
     image = dualight.render(
         scene,
         method,
@@ -342,7 +358,7 @@ def _compare(case: Case, method: str, seed: int, **wrong) -> Outcome:
         rr_depth=info["rr_depth"],
         seed=seed,
         progress=False,
-        **case.options,
+        **options,
     )
     mask = metrics.renderable_by_light_tracing(scene) if method == "light" else None
     keep = np.ones(ref.shape[:2], dtype=bool) if mask is None else mask

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'Guide', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'train_importance_guide', 'train_radiance_guide', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'Guide', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'guide_from_records', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'train_importance_guide', 'train_radiance_guide', 'with_guide_start', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -1467,6 +1467,10 @@ def fresnel_dielectric(cos_i: typing.Annotated[numpy.typing.ArrayLike, numpy.flo
     """
     Unpolarised Fresnel reflectance of a smooth interface with eta = interior / exterior IOR; cos_i < 0 arrives from the interior. Returns (R, |cos_t|, eta_ratio = IOR of the refracted side / incident side).
     """
+def guide_from_records(scene: Scene, records: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], bsdf_fraction: typing.SupportsFloat | typing.SupportsIndex = 0.5, spatial_threshold: typing.SupportsInt | typing.SupportsIndex = 1000, rho: typing.SupportsFloat | typing.SupportsIndex = 0.009999999776482582) -> Guide:
+    """
+    A guide over the scene's box from records (N, 7): x, y, z, wx, wy, wz, value (the incident quantity over the density the direction was drawn with), sampled with probability 1 - bsdf_fraction in every leaf.
+    """
 def point_polygon_form_factor(point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], normal: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"], polygon: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> float:
     """
     Unoccluded form factor from a differential area to a planar convex polygon (3-8 vertices) whose right-hand-rule normal faces the point; 0 if it faces away.
@@ -1526,6 +1530,21 @@ def train_importance_guide(scene: Scene, camera: PinholeCamera, options: LightTr
 def train_radiance_guide(scene: Scene, camera: PinholeCamera, options: PathTracerOptions, progress: typing.Any = None) -> dict:
     """
     Trains the radiance guide the path tracer would (options.guiding need not be set); returns dict(guide, keyboard_interrupt).
+    """
+@typing.overload
+def with_guide_start(options: PathTracerOptions, radiance: Guide, importance: Guide) -> PathTracerOptions:
+    """
+    A copy of options whose guide training starts from these guides (None: from BSDF sampling).
+    """
+@typing.overload
+def with_guide_start(options: LightTracerOptions, radiance: Guide, importance: Guide) -> LightTracerOptions:
+    """
+    A copy of options whose guide training starts from these guides (None: from BSDF sampling).
+    """
+@typing.overload
+def with_guide_start(options: BdptOptions, radiance: Guide, importance: Guide) -> BdptOptions:
+    """
+    A copy of options whose guide training starts from these guides (None: from BSDF sampling).
     """
 def write_image(path: str, pixels: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], metadata: collections.abc.Mapping[str, str] = {}) -> None:
     """

@@ -8,6 +8,10 @@ learnt from camera paths (where light comes from, for ``"path"``) and an importa
 from light paths (where a particle will be seen by the camera, for ``"light"``). Each is an
 SD-tree (Müller, Gross and Novák 2017): a binary tree over the scene's box with a quadtree of
 directions in each leaf, built in iterations of 1, 2, 4, ... samples per pixel.
+Guided BDPT (``render(..., "bdpt", guiding=True)``) trains and uses both.
+
+:func:`solution_records` turns a radiosity and importance solution into records from which
+``render(..., guide_from=solution)`` builds the guides its first training iteration samples.
 """
 
 from __future__ import annotations
@@ -102,3 +106,77 @@ def plot_directional(guide: Any, point: tuple[float, float, float], ax: Any = No
     ax.set_ylabel("phi / 2 pi")
     ax.figure.colorbar(collection, ax=ax, label="density on the square")
     return ax
+
+
+def solution_records(
+    solution: Any,
+    transport: Transport,
+    *,
+    records: int = 1 << 18,
+    seed: int = 0,
+) -> np.ndarray:
+    """Guide records (rows ``x, y, z, wx, wy, wz, value``) from a radiosity solution, as
+    ``render(..., guide_from=solution)`` seeds its guides with (Peter and Pietrek 1998's idea:
+    start light paths towards what the camera sees).
+
+    About ``records`` rows in all: at random points of each patch ``i``, directions towards a
+    random point of a patch ``j`` drawn with probability ``F_ij / sum_j F_ij`` (so occluded
+    patches are never chosen); ``value`` is the quantity arriving along the direction over the
+    direction's solid-angle density. ``"radiance"``: ``B_j / pi`` (the radiance patch ``j``
+    sends, emission included). ``"importance"``: ``rho_j I_j / A_j`` (the measurement a unit of
+    power arriving at ``j`` makes, from the importance solution ``M^T I = R``). Colours are
+    averaged over channels. Needs the solution's form factors (not a hierarchical solution's
+    links) and, for importance, ``solve(..., importance=True)``."""
+    if transport not in ("radiance", "importance"):
+        raise ValueError(f"transport must be 'radiance' or 'importance', got {transport!r}")
+    F = getattr(solution, "form_factors", None)
+    if F is None:
+        raise ValueError(
+            "guide_from needs a radiosity solution with form factors (method 'direct', "
+            "'jacobi', 'gauss_seidel' or 'southwell'; a hierarchical one has links instead)"
+        )
+    if transport == "importance" and solution.I is None:
+        raise ValueError("guide_from needs the importance solution: solve(..., importance=True)")
+    if not (isinstance(records, int) and 1 <= records <= 1 << 24):
+        raise ValueError(f"records must be an int in [1, 2^24], got {records!r}")
+    pm = solution.patches
+    n = len(pm)
+    indptr = np.asarray(F.indptr, dtype=np.int64)
+    indices = np.asarray(F.indices, dtype=np.int64)
+    values = np.asarray(F.values, dtype=np.float64)
+    row_sum = np.add.reduceat(values, indptr[:-1]) if len(values) else np.zeros(n)
+    row_sum[indptr[:-1] == indptr[1:]] = 0.0
+    if transport == "radiance":
+        q = np.asarray(solution.B, dtype=np.float64).mean(axis=1) / np.pi
+    else:
+        rho_i = np.asarray(solution.rho, dtype=np.float64) * np.asarray(solution.I)
+        q = rho_i.mean(axis=1) / pm.areas
+    senders = np.flatnonzero(row_sum > 0.0)
+    if len(senders) == 0:
+        raise ValueError("the solution's form factors are all zero: no patch sees another")
+    per_patch = max(1, records // len(senders))
+    rng = np.random.default_rng(seed)
+    i = np.repeat(senders, per_patch)
+    cum = np.concatenate([[0.0], np.cumsum(values)])
+    target = cum[indptr[i]] + rng.random(len(i)) * row_sum[i]
+    pos = np.clip(np.searchsorted(cum, target, side="right") - 1, indptr[i], indptr[i + 1] - 1)
+    j = indices[pos]
+
+    def points(patch: np.ndarray) -> np.ndarray:
+        v = pm.vertices[pm.triangles[patch]]
+        a, b = rng.random(len(patch)), rng.random(len(patch))
+        s = np.sqrt(a)[:, None]
+        b = b[:, None]
+        return (1 - s) * v[:, 0] + s * (1 - b) * v[:, 1] + s * b * v[:, 2]
+
+    p_i, p_j = points(i), points(j)
+    d = p_j - p_i
+    r2 = np.einsum("ij,ij->i", d, d)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = d / np.sqrt(r2)[:, None]
+        cos_j = np.abs(np.einsum("ij,ij->i", pm.normals[j], w))
+        pdf_w = values[pos] / row_sum[i] * r2 / (cos_j * pm.areas[j])
+        value = q[j] / pdf_w
+    keep = (r2 > 0) & (cos_j > 1e-4) & np.isfinite(value) & (value >= 0)
+    out = np.concatenate([p_i, w, value[:, None]], axis=1)[keep]
+    return out.astype(np.float32)

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numbers
 import os
+import time
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -57,6 +58,32 @@ def _only_for(keyword: str, unset: bool, estimator: Estimator, method: str) -> N
     if not unset and not estimator.takes(keyword):
         takers = ", ".join(repr(n) for n, e in ESTIMATORS.items() if e.takes(keyword))
         raise ValueError(f"{keyword} applies to method {takers} only, not {method!r}")
+
+
+def _seed_guides(scene: Scene, method: str, options: Any, solution: Any) -> tuple[Any, Any]:
+    """The guides a radiosity solution seeds for ``method`` (``render(guide_from=...)``):
+    radiance for camera paths, importance for light paths (None where not needed)."""
+    from dualight.guiding import solution_records  # guiding imports this module
+    from dualight.radiosity import Solution
+
+    if not isinstance(solution, Solution):
+        raise TypeError(
+            f"guide_from must be a dualight.radiosity.Solution, got {type(solution).__name__}"
+        )
+    compiled = scene._compile()
+    settings = {
+        "bsdf_fraction": options.guide_bsdf_fraction,
+        "spatial_threshold": options.guide_spatial_threshold,
+        "rho": options.guide_rho,
+    }
+
+    def guide(transport: Literal["radiance", "importance"]) -> Any:
+        records = solution_records(solution, transport, seed=options.seed)
+        return _core.guide_from_records(compiled, records, **settings)
+
+    radiance = guide("radiance") if method in ("path", "bdpt") else None
+    importance = guide("importance") if method in ("light", "bdpt") else None
+    return radiance, importance
 
 
 def _guiding_fields(
@@ -199,6 +226,7 @@ def render(
     skip: bool = _DEFAULT.skip_unneeded,
     executor: Any = None,
     guiding: bool | Mapping[str, Any] = False,
+    guide_from: Any = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 
@@ -348,6 +376,14 @@ def render(
         fraction and the paths splitting added and the roulette stopped; ``seconds``
         includes the training. :func:`dualight.train_guide` returns the guide itself, to
         draw.
+    guide_from:
+        With ``guiding``: a :class:`dualight.radiosity.Solution` of the same scene (with form
+        factors; for ``"light"`` and ``"bdpt"`` solved with ``importance=True``) whose
+        radiosity and importance seed the guides (:func:`dualight.guiding.solution_records`):
+        the first training iteration samples them instead of the BSDF alone, so light paths
+        head for what the camera sees from the start (Peter and Pietrek 1998).
+        ``stats["guiding"]`` says ``seeded`` and ``seeding_seconds`` (counted in ``seconds``
+        and in ``time_limit``; the solution's own solve is not).
 
     Returns
     -------
@@ -403,6 +439,8 @@ def render(
     fields.update(_guiding_fields(guiding, estimator, method))
     keywords = estimator.keywords(fields, mlt)
     options = estimator.options(**keywords)  # the core checks every value, before any work
+    if guide_from is not None and guiding is False:
+        raise ValueError("guide_from seeds path guiding's guides: give guiding=True (or a dict)")
     if executor is not None:
         executor = as_executor(executor)
         if time_limit is not None or spp is None:
@@ -419,6 +457,15 @@ def render(
     scene.validate_for_rendering(camera)
     cam = camera or scene.camera
     assert cam is not None
+    seeding = 0.0
+    if guide_from is not None:
+        start = time.perf_counter()
+        radiance, importance = _seed_guides(scene, method, options, guide_from)
+        seeding = time.perf_counter() - start
+        if time_limit:  # the seeding counts in the render's time
+            left = max(1e-3, time_limit - seeding)
+            options = estimator.options(**{**keywords, "time_limit": left})
+        options = _core.with_guide_start(options, radiance, importance)
 
     def finish(result: Mapping[str, Any]) -> Image:
         stats = dict(result["stats"])
@@ -435,6 +482,9 @@ def render(
             stats["heuristic"] = heuristic
         if method in ("path", "bdpt"):
             stats["strategies"] = strategies
+        if guide_from is not None and "guiding" in stats:
+            stats["guiding"] = {**stats["guiding"], "seeding_seconds": seeding}
+            stats["seconds"] += seeding
         stats["threads"] = (threads or 1) if executor is not None else (threads or os.cpu_count())
         return _image(result, stats, strategy_images)
 

@@ -10,6 +10,7 @@
 #include "bindings/interruptible.h"
 #include "bindings/numpy_util.h"
 #include "bindings/render_result.h"
+#include "pathspace/bdpt.h"
 #include "pathspace/light_tracer.h"
 #include "pathspace/path_tracer.h"
 
@@ -146,6 +147,63 @@ void def_training(py::module_& m, const char* name, const Train& train, const ch
       py::arg("scene"), py::arg("camera"), py::arg("options"), py::arg("progress") = py::none(), doc);
 }
 
+// A guide built from records given as rows (x, y, z, wx, wy, wz, value): value is the incident
+// quantity along the unit direction w over the density w was drawn with (guide_record.h). Every
+// leaf samples the guide with probability 1 - bsdf_fraction (nothing judges a first guide).
+Guide guide_from_records(const Scene& scene, const Rows& rows, const SdTreeSettings& settings) {
+  constexpr py::ssize_t kMaxRecords = py::ssize_t(1) << 24;
+  if (rows.ndim() != 2 || rows.shape(1) != 7) throw py::value_error("records must have shape (N, 7)");
+  if (rows.shape(0) < 1 || rows.shape(0) > kMaxRecords) {
+    throw py::value_error("records must number 1 to 2^24, got " + std::to_string(rows.shape(0)));
+  }
+  if (!(settings.bsdf_fraction >= 0.f && settings.bsdf_fraction <= 1.f)) {
+    throw py::value_error("bsdf_fraction must be in [0, 1]");
+  }
+  if (!(settings.rho > 0.f && settings.rho < 1.f)) throw py::value_error("rho must be in (0, 1)");
+  if (settings.spatial_threshold < 1) throw py::value_error("spatial_threshold must be >= 1");
+  const std::vector<float> r = rows_of(rows, 7, "records");
+  const size_t n = r.size() / 7;
+  GuideRecords records(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float* x = &r[7 * i];
+    const Vec3 w{x[3], x[4], x[5]};
+    const float len = length(w);
+    for (int k = 0; k < 7; ++k) {
+      if (!std::isfinite(x[k])) throw py::value_error("records must be finite (row " + std::to_string(i) + ")");
+    }
+    if (!(len > 0.f) || !(x[6] >= 0.f)) {
+      throw py::value_error("records need non-zero directions and values >= 0 (row " + std::to_string(i) + ")");
+    }
+    records[i] = {{x[0], x[1], x[2]}, direction_to_square(w / len), x[6], x[6], 0.f, 1.f};
+  }
+  Vec3 lo, hi;
+  guide_bounds(scene, lo, hi);
+  Guide g;
+  {
+    py::gil_scoped_release release;  // sorting and building (well under a second for 2^20 records)
+    g.tree = std::make_shared<const SdTree>(records, lo, hi, settings);
+  }
+  g.stats.records = n;
+  g.stats.spatial_leaves = g.tree->leaves();
+  g.stats.directional_nodes = g.tree->directional_nodes();
+  g.tree->bsdf_fractions(g.stats.bsdf_fraction, g.stats.bsdf_fraction_min, g.stats.bsdf_fraction_max);
+  return g;
+}
+
+// options with start guides (null: none) for its training's first iteration.
+template <class Options>
+void def_with_guide_start(py::module_& m) {
+  m.def(
+      "with_guide_start",
+      [](Options o, const Guide* radiance, const Guide* importance) {
+        o.guide_start_radiance = radiance != nullptr ? radiance->tree : nullptr;
+        o.guide_start_importance = importance != nullptr ? importance->tree : nullptr;
+        return o;
+      },
+      py::arg("options"), py::arg("radiance").none(true), py::arg("importance").none(true),
+      "A copy of options whose guide training starts from these guides (None: from BSDF sampling).");
+}
+
 }  // namespace
 
 void bind_guiding(py::module_& m) {
@@ -163,6 +221,24 @@ void bind_guiding(py::module_& m) {
       .def_property_readonly("stats", [](const Guide& g) { return guiding_dict(g.stats); })
       .def_property_readonly("empty", [](const Guide& g) { return !g.tree; });
 
+  m.def(
+      "guide_from_records",
+      [](std::shared_ptr<const Scene> scene, const Rows& records, float bsdf_fraction, uint32_t spatial_threshold,
+         float rho) {
+        SdTreeSettings settings;
+        settings.learn_bsdf_fraction = false;
+        settings.bsdf_fraction = bsdf_fraction;
+        settings.spatial_threshold = spatial_threshold;
+        settings.rho = rho;
+        return guide_from_records(*scene, records, settings);
+      },
+      py::arg("scene"), py::arg("records"), py::arg("bsdf_fraction") = 0.5f, py::arg("spatial_threshold") = 1000u,
+      py::arg("rho") = 0.01f,
+      "A guide over the scene's box from records (N, 7): x, y, z, wx, wy, wz, value (the incident quantity "
+      "over the density the direction was drawn with), sampled with probability 1 - bsdf_fraction in every leaf.");
+  def_with_guide_start<PathTracerOptions>(m);
+  def_with_guide_start<LightTracerOptions>(m);
+  def_with_guide_start<BdptOptions>(m);
   def_training<PathTracerOptions>(m, "train_radiance_guide", &train_radiance_guide,
                                   "Trains the radiance guide the path tracer would (options.guiding need not be set); returns "
                                   "dict(guide, keyboard_interrupt).");

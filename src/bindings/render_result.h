@@ -34,6 +34,7 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["bsdf_fraction_min"] = g.bsdf_fraction_min;
   d["bsdf_fraction_max"] = g.bsdf_fraction_max;
   d["stopped_by_records"] = g.stopped_by_records;
+  d["seeded"] = g.seeded;
   d["adjoint_roulette"] = g.adjoint_roulette;
   d["split_paths"] = g.split_paths;
   d["roulette_stops"] = g.roulette_stops;

@@ -64,11 +64,14 @@ inline void guide_bounds(const Scene& scene, Vec3& lo, Vec3& hi) {
 }
 
 // run(spp, seed, guide, collector, film) renders one iteration (guide may be null) on `film`
-// (width x height) and returns its stats.
+// (width x height) and returns its stats. `start` (may be null) guides the first iteration.
 template <class RunIteration>
 TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g, int width,
-                         int height, RenderControl& control, const RunIteration& run) {
+                         int height, RenderControl& control, std::shared_ptr<const SdTree> start,
+                         const RunIteration& run) {
   TrainedGuide out;
+  out.stats.seeded = start != nullptr;
+  out.tree = std::move(start);
   const Stopwatch elapsed;
   const double spp_budget = est.spp > 0 ? std::floor(g.guide_training * est.spp) : 0.0;
   const double time_budget = est.time_limit > 0.0 ? g.guide_training * est.time_limit : 0.0;

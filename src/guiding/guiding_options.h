@@ -1,9 +1,12 @@
 // What an estimator that can be guided is told about its guide (guide_training.h).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 
 namespace dualight {
+
+class SdTree;
 
 struct GuidingOptions {
   bool guiding = false;
@@ -25,6 +28,11 @@ struct GuidingOptions {
   float guide_rho = 0.01f;  // directional subdivision: a node with more of its leaf's value is split
   // Records one training iteration may keep (24 bytes each): training stops before one would need more.
   uint32_t guide_max_records = 1u << 23;
+  // Guides the first training iteration samples from instead of the BSDF alone (null: none),
+  // e.g. seeded from a radiosity and importance solution (guiding.py): the radiance guide's for
+  // camera paths, the importance guide's for light paths. Not options a user types: the
+  // bindings set them from Guide objects.
+  std::shared_ptr<const SdTree> guide_start_radiance, guide_start_importance;
 };
 
 }  // namespace dualight

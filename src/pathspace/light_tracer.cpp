@@ -185,6 +185,7 @@ TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& cam
                                     const LightTracerOptions& options, RenderControl& control) {
   PixelImportance pixel_weight;  // uniform until an iteration's image is there
   return train_guide(scene, options, options, camera.width(), camera.height(), control,
+                     options.guide_start_importance,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
                        const LightTracerOptions o = iteration_options(options, spp, seed);
                        const RenderStats s =

@@ -326,6 +326,7 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
 TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                   RenderControl& control) {
   return train_guide(scene, options, options, camera.width(), camera.height(), control,
+                     options.guide_start_radiance,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
                        const PathTracerOptions o = iteration_options(options, spp, seed);
                        return drive_path(scene, camera, o, control, film, {tree}, &collector);

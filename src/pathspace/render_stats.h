@@ -44,6 +44,7 @@ struct GuidingStats {
   double bsdf_fraction = 1.0;  // the leaves' mean weighted by records (guiding/sd_tree.h)
   float bsdf_fraction_min = 1.f, bsdf_fraction_max = 1.f;
   bool stopped_by_records = false;  // the next iteration would have kept more than guide_max_records
+  bool seeded = false;               // the first iteration sampled a given guide (guide_start_*)
   bool adjoint_roulette = false;     // the image's paths played adjoint-driven roulette and splitting
   uint64_t split_paths = 0;          // paths splitting added to the image's samples
   uint64_t roulette_stops = 0;       // paths the roulette stopped

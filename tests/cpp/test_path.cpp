@@ -241,7 +241,8 @@ TEST_CASE("guided_walks_and_mis_weights_agree_on_the_mixtures") {
       if (j + 1 < path.size() && !path[j].delta) {
         agree(path[j - 1].pdf_rev, pdf_area(kCamera, path[j], &path[j + 1], path[j - 1], &importance));
         ++reverse;  // control: the camera walk's own guide is not the reverse walk's
-        reverse_wrong_guide += off(path[j - 1].pdf_rev, pdf_area(kCamera, path[j], &path[j + 1], path[j - 1], &radiance));
+        reverse_wrong_guide +=
+            off(path[j - 1].pdf_rev, pdf_area(kCamera, path[j], &path[j + 1], path[j - 1], &radiance));
       }
     }
     for (size_t j = 2; j + 1 < light.size(); ++j) {
@@ -254,7 +255,8 @@ TEST_CASE("guided_walks_and_mis_weights_agree_on_the_mixtures") {
       const Path full(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(k + 1));
       const MisHeuristic h = (i & 1) ? MisHeuristic::Power : MisHeuristic::Balance;
       CHECK_NEAR(strategy_weight_sum(scene, full, h, Strategies::Mis, &guides, &guides).sum, 1.f, 2e-4f);
-      swapped_off += std::abs(strategy_weight_sum(scene, full, h, Strategies::Mis, &guides, &swapped).sum - 1.f) > 1e-2f;
+      const float wrong = strategy_weight_sum(scene, full, h, Strategies::Mis, &guides, &swapped).sum;
+      swapped_off += std::abs(wrong - 1.f) > 1e-2f;
       ++checked;
     }
   }

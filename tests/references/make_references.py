@@ -50,6 +50,9 @@ The references (see README.md beside them for how long they took):
 * ``point_64``, ``spot_64``: ``cornell_box(resolution=(64, 64), variant="point")`` and
   ``variant="spot"`` (the classic box lit by a point light or a spot light below the ceiling),
   ``max_depth=8``, ``rr_depth=5``.
+* ``rooms10_64``: ``rooms(10, resolution=(64, 64))`` (ten diffuse rooms joined by doors, the
+  importance-driven radiosity scene; path guiding's seeded variant is measured on it),
+  ``max_depth=8``, ``rr_depth=5``.
 """
 
 from __future__ import annotations
@@ -206,6 +209,13 @@ def _references() -> dict[str, Reference]:
             "door_glossy_64",
             'door_ajar(resolution=(64, 64), variant="glossy")',
             lambda: scenes.door_ajar(resolution=(64, 64), variant="glossy"),
+            spp=262144,
+            max_depth=8,
+        ),
+        Reference(
+            "rooms10_64",
+            "rooms(10, resolution=(64, 64))",
+            lambda: scenes.rooms(10, resolution=(64, 64)),
             spp=262144,
             max_depth=8,
         ),
