@@ -1,7 +1,8 @@
 # The README's commands. Each sets itself up first (idempotent; see scripts/setup.sh).
 VENV := .venv
 PY := $(VENV)/bin/python
-SOURCES := $(shell find src python tests/hooks -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' \)) pyproject.toml CMakeLists.txt
+# Everything the wheel holds: code, and the package's data (references, scenes' textures).
+SOURCES := $(shell find src python tests/hooks -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.pyi' -o -name 'CMakeLists.txt' -o -path 'python/dualight/data/*' \)) pyproject.toml CMakeLists.txt
 
 .PHONY: setup install demo test test-long test-fast test-sanitize fuzz cpp-test bench bench-quick bench-topics stubs clean
 

@@ -13,8 +13,9 @@ without its cost.
 Writes ``benchmarks/results/bench_guiding.json`` and ``bench_guiding.png``; ``--quick`` writes
 ``*_quick`` files (git ignores them).
 
-    python benchmarks/bench_guiding.py                # budgets 1,4,8 s, 3 seeds: about 15 minutes
+    python benchmarks/bench_guiding.py                # budgets 1,4,8 s, 3 seeds: about 25 minutes
     python benchmarks/bench_guiding.py --quick        # a smoke run
+    python benchmarks/bench_guiding.py --scenes rooms10_dark --suffix _rooms10_dark
 """
 
 from __future__ import annotations
@@ -37,8 +38,14 @@ sys.path[:0] = [str(HERE)]
 import bench_mlt  # noqa: E402
 from bench_bdpt import RESULTS, SCENES  # noqa: E402
 
-# Veach's door scaled up: rooms(10), diffuse, so radiosity can seed its guides.
+# Veach's door scaled up: rooms(10), diffuse, so radiosity can seed its guides; its camera room
+# is lit, "rooms10_dark" sees the building from a dark room lit only through its doors.
 SCENES["rooms10"] = ("rooms10_64", lambda: scenes.rooms(10, resolution=(64, 64)))
+SCENES["rooms10_dark"] = (
+    "rooms10_dark_64",
+    lambda: scenes.rooms(10, resolution=(64, 64), camera_room=1, camera_room_lit=False),
+)
+SEEDABLE = ("rooms10", "rooms10_dark")  # diffuse: a radiosity solution seeds the guides
 SEEDED = ("path_seeded", "light_seeded", "bdpt_seeded")  # guide_from=solution, diffuse scenes
 bench_mlt.VARIANTS.update(
     {
@@ -60,7 +67,7 @@ RATIOS = [
     ("light_seeded", "light_guided"),
     ("bdpt_seeded", "bdpt_guided"),
 ]
-NAMES = ("door", "caustics", "cornell", "rooms10")
+NAMES = ("door", "caustics", "cornell", "rooms10", "rooms10_dark")
 
 
 def add_seeded_variants(name: str) -> dict[str, Any]:
@@ -122,6 +129,9 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=3, help="renders per method and budget")
     parser.add_argument("--spp", type=int, default=512, help="the equal-spp comparison's spp")
     parser.add_argument("--quick", action="store_true", help="budgets 0.25,0.5, 1 seed, 64 spp")
+    parser.add_argument(
+        "--suffix", type=str, default="", help="of the output files (a study of some scenes)"
+    )
     args = parser.parse_args()
     if args.quick:
         args.budgets, args.seeds, args.spp = "0.25,0.5", 1, 64
@@ -131,7 +141,7 @@ def main() -> None:
     unknown = set(methods) - set(METHODS) - set(SEEDED) | set(names) - set(SCENES)
     if unknown:
         parser.error(f"unknown scene or method: {', '.join(sorted(unknown))}")
-    suffix = "_quick" if args.quick else ""
+    suffix = args.suffix + ("_quick" if args.quick else "")
     start = time.perf_counter()
     skipped: dict[str, str] = {}
     summary: dict[str, Any] = {
@@ -145,7 +155,7 @@ def main() -> None:
     for name in names:
         study = methods
         seeding = None
-        if name == "rooms10":  # the issue's scene for the seeded variant
+        if name in SEEDABLE:
             seeding = add_seeded_variants(name)
             study = methods + [m for m in SEEDED if m not in methods]
         entry = bench_mlt.scene_study(name, study, budgets, args.seeds, skipped, RATIOS)

@@ -317,6 +317,9 @@ def test_bad_guide_from_input_is_named(
         dualight.render(cornell, "path", spp=4, guide_from=cornell_solution, progress=False)
     with pytest.raises(TypeError, match="guide_from must be a dualight.radiosity.Solution"):
         dualight.render(cornell, "path", spp=4, guiding=True, guide_from="x", progress=False)
+    other = dualight.radiosity.solve(scenes.rooms(2, resolution=(8, 8)), max_edge=2.0)
+    with pytest.raises(ValueError, match="solution is of another scene"):
+        dualight.render(cornell, "path", spp=4, guiding=True, guide_from=other)
     hierarchical = dualight.radiosity.solve(cornell, "hierarchical", max_edge=280.0)
     with pytest.raises(ValueError, match="form factors"):
         dualight.render(cornell, "path", spp=4, guiding=True, guide_from=hierarchical)

@@ -97,6 +97,9 @@ def test_lights() -> None:
     assert lit(scenes.rooms(10)) == [0, 3, 6, 7, 9]  # 7 is the farthest from room 0
     assert lit(scenes.rooms(10, lit_every=100)) == [0, 7]
     assert lit(scenes.rooms(10, camera_room=7)) == [0, 3, 6, 7, 8, 9]
+    # A dark camera room, whatever lit_every says (room 0 is lit by it otherwise).
+    assert lit(scenes.rooms(10, camera_room_lit=False)) == [3, 6, 7, 9]
+    assert lit(scenes.rooms(10, camera_room=1, camera_room_lit=False)) == [0, 3, 6, 8, 9]
     scene = scenes.rooms(4, light_radiance=(1.0, 2.0, 3.0))
     for m in scene.meshes:
         if m.is_emitter:
@@ -129,6 +132,10 @@ def test_camera_room_and_materials() -> None:
         scenes.rooms(4, camera_room=4)
     with pytest.raises(ValueError, match="door"):
         scenes.rooms(4, door=(1.0, 3.0))
+    with pytest.raises(ValueError, match="leaves no room lit"):
+        scenes.rooms(1, camera_room_lit=False)
+    with pytest.raises(TypeError, match="camera_room_lit"):
+        scenes.rooms(4, camera_room_lit=1)  # type: ignore[arg-type]
 
 
 # Closedness ---------------------------------------------------------------------------------

@@ -23,6 +23,7 @@ import numpy as np
 
 from dualight import _core
 from dualight.methods import ESTIMATORS
+from dualight.radiosity.solution import Solution
 from dualight.render import _budget, _guiding_fields, _plain
 from dualight.scene import Camera, Scene
 
@@ -109,7 +110,7 @@ def plot_directional(guide: Any, point: tuple[float, float, float], ax: Any = No
 
 
 def solution_records(
-    solution: Any,
+    solution: Solution,
     transport: Transport,
     *,
     records: int = 1 << 18,

@@ -24,6 +24,7 @@ from dualight.methods import (
     Sampler,
     Strategies,
 )
+from dualight.radiosity.solution import Solution
 from dualight.scene import Camera, Scene, _freezes_scene
 
 # The core's defaults of the keywords render shares with the options (BDPT's have them all).
@@ -60,15 +61,24 @@ def _only_for(keyword: str, unset: bool, estimator: Estimator, method: str) -> N
         raise ValueError(f"{keyword} applies to method {takers} only, not {method!r}")
 
 
-def _seed_guides(scene: Scene, method: str, options: Any, solution: Any) -> tuple[Any, Any]:
+def _seed_guides(scene: Scene, method: str, options: Any, solution: Solution) -> tuple[Any, Any]:
     """The guides a radiosity solution seeds for ``method`` (``render(guide_from=...)``):
     radiance for camera paths, importance for light paths (None where not needed)."""
     from dualight.guiding import solution_records  # guiding imports this module
-    from dualight.radiosity import Solution
 
     if not isinstance(solution, Solution):
         raise TypeError(
             f"guide_from must be a dualight.radiosity.Solution, got {type(solution).__name__}"
+        )
+    lo, hi = (np.asarray(b, dtype=np.float64) for b in scene.bounds())
+    slack = 1e-3 * float(np.max(hi - lo)) + 1e-6
+    # The patches subdivide the scene's triangles: the same scene has the same box.
+    vertices = solution.patches.vertices
+    if (np.abs(vertices.min(axis=0) - lo) > slack).any() or (
+        np.abs(vertices.max(axis=0) - hi) > slack
+    ).any():
+        raise ValueError(
+            "guide_from's solution is of another scene: its patches' box is not this scene's"
         )
     compiled = scene._compile()
     settings = {
@@ -226,7 +236,7 @@ def render(
     skip: bool = _DEFAULT.skip_unneeded,
     executor: Any = None,
     guiding: bool | Mapping[str, Any] = False,
-    guide_from: Any = None,
+    guide_from: Solution | None = None,
 ) -> Image:
     """Render ``scene`` from its camera and return a linear RGB :class:`Image`.
 

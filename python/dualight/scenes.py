@@ -537,6 +537,7 @@ def rooms(
     doors: bool = True,
     wall_thickness: float = 0.1,
     tint: float = 0.05,
+    camera_room_lit: bool = True,
 ) -> Scene:
     """A building of ``n`` rooms joined by doors, with the camera in one of them.
 
@@ -575,7 +576,9 @@ def rooms(
         ``camera_room`` through doors (the highest index among ties): with the defaults, rooms
         0, 3, 6, ... and the far room (n = 4: rooms 0 and 3; n = 10: 0, 3, 6, 7 and 9). Light
         reaches the unlit rooms, and the camera from the far rooms, only through doors. The
-        grid, the lights and the camera do not depend on ``doors``.
+        grid, the lights and the camera do not depend on ``doors``. ``camera_room_lit=False``
+        leaves ``camera_room`` dark whatever ``lit_every`` says: the camera then sees only
+        light that came through doors (Veach's door at the scale of a building).
         ``light_radiance`` may be a number or RGB; the light reflects like its room.
     Camera
         In ``camera_room`` at eye height (1.6 m or 0.64 ``sy`` if lower), 10% of the room's
@@ -620,6 +623,12 @@ def rooms(
 
     cols, neighbours, far = _rooms_grid(n, int(camera_room))
     lit = {k for k in range(n) if k % lit_every == 0} | {int(camera_room), far}
+    if not isinstance(camera_room_lit, bool):
+        raise TypeError(f"rooms: camera_room_lit must be True or False, got {camera_room_lit!r}")
+    if not camera_room_lit:
+        lit.discard(int(camera_room))
+    if not lit:
+        raise ValueError("rooms: camera_room_lit=False leaves no room lit (n = 1)")
     tints = 1.0 + tint * np.random.default_rng(seed).uniform(-1.0, 1.0, size=(n, 3))
     size = np.array([sx, sy, sz])
     half = 0.5 * size

@@ -52,7 +52,8 @@ The references (see README.md beside them for how long they took):
   ``max_depth=8``, ``rr_depth=5``.
 * ``rooms10_64``: ``rooms(10, resolution=(64, 64))`` (ten diffuse rooms joined by doors, the
   importance-driven radiosity scene; path guiding's seeded variant is measured on it),
-  ``max_depth=8``, ``rr_depth=5``.
+  ``max_depth=8``, ``rr_depth=5``; ``rooms10_dark_64`` the same building seen from room 1 left
+  dark (``camera_room=1, camera_room_lit=False``): lit only through its doors.
 """
 
 from __future__ import annotations
@@ -216,6 +217,13 @@ def _references() -> dict[str, Reference]:
             "rooms10_64",
             "rooms(10, resolution=(64, 64))",
             lambda: scenes.rooms(10, resolution=(64, 64)),
+            spp=262144,
+            max_depth=8,
+        ),
+        Reference(
+            "rooms10_dark_64",
+            "rooms(10, resolution=(64, 64), camera_room=1, camera_room_lit=False)",
+            lambda: scenes.rooms(10, resolution=(64, 64), camera_room=1, camera_room_lit=False),
             spp=262144,
             max_depth=8,
         ),
