@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import types
 
 import numpy as np
 import pytest
@@ -277,6 +278,36 @@ def test_radiance_records_of_a_solution_point_at_the_light(
     assert median_density(cornell_solution) > 1.0
     flat = dataclasses.replace(cornell_solution, B=np.ones_like(cornell_solution.B))
     assert median_density(flat) < 1.0 / np.pi
+
+
+def test_solution_records_skip_patches_that_see_nothing(
+    cornell_solution: dualight.radiosity.Solution,
+) -> None:
+    """Patches whose form-factor rows are empty (the last ones too, as for black patches whose
+    rows were not computed) send no records; the others still do."""
+    F = cornell_solution.form_factors
+    indptr = np.asarray(F.indptr).copy()
+    last = len(indptr) - 3  # the last two rows emptied
+    cut = indptr[last]
+    indptr[last:] = cut
+    emptied = types.SimpleNamespace(
+        indptr=indptr, indices=np.asarray(F.indices)[:cut], values=np.asarray(F.values)[:cut]
+    )
+    solution = dataclasses.replace(cornell_solution, form_factors=emptied)
+    records = dualight.guiding.solution_records(solution, "radiance", records=4096)
+    assert len(records) > 3000
+    patches = cornell_solution.patches
+    p = records[:, :3].astype(np.float64)
+
+    def on_patch(k: int) -> np.ndarray:
+        a, b, c = patches.vertices[patches.triangles[k]]
+        n = np.cross(b - a, c - a)
+        in_plane = np.abs((p - a) @ n) <= 1e-3 * np.linalg.norm(n)
+        edges = [np.cross(v1 - v0, p - v0) @ n >= -1e-6 for v0, v1 in ((a, b), (b, c), (c, a))]
+        return in_plane & edges[0] & edges[1] & edges[2]
+
+    assert on_patch(0).any()  # control: a patch whose row was kept sends records
+    assert not any(on_patch(k).any() for k in (last, last + 1))
 
 
 @pytest.mark.parametrize("method", ["path", "light", "bdpt"])

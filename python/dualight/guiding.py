@@ -141,24 +141,24 @@ def solution_records(
     if not (isinstance(records, int) and 1 <= records <= 1 << 24):
         raise ValueError(f"records must be an int in [1, 2^24], got {records!r}")
     pm = solution.patches
-    n = len(pm)
     indptr = np.asarray(F.indptr, dtype=np.int64)
     indices = np.asarray(F.indices, dtype=np.int64)
     values = np.asarray(F.values, dtype=np.float64)
-    row_sum = np.add.reduceat(values, indptr[:-1]) if len(values) else np.zeros(n)
-    row_sum[indptr[:-1] == indptr[1:]] = 0.0
+    # Row i's form factors are values[indptr[i]:indptr[i + 1]]: its sum and the sampling below
+    # read the same running sum (rows may be empty, the last ones too).
+    cum = np.concatenate([[0.0], np.cumsum(values)])
+    row_sum = cum[indptr[1:]] - cum[indptr[:-1]]
     if transport == "radiance":
         q = np.asarray(solution.B, dtype=np.float64).mean(axis=1) / np.pi
     else:
-        rho_i = np.asarray(solution.rho, dtype=np.float64) * np.asarray(solution.I)
-        q = rho_i.mean(axis=1) / pm.areas
+        rho_I = np.asarray(solution.rho, dtype=np.float64) * np.asarray(solution.I)  # noqa: N806
+        q = rho_I.mean(axis=1) / pm.areas
     senders = np.flatnonzero(row_sum > 0.0)
     if len(senders) == 0:
         raise ValueError("the solution's form factors are all zero: no patch sees another")
     per_patch = max(1, records // len(senders))
     rng = np.random.default_rng(seed)
     i = np.repeat(senders, per_patch)
-    cum = np.concatenate([[0.0], np.cumsum(values)])
     target = cum[indptr[i]] + rng.random(len(i)) * row_sum[i]
     pos = np.clip(np.searchsorted(cum, target, side="right") - 1, indptr[i], indptr[i + 1] - 1)
     j = indices[pos]

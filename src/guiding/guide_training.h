@@ -159,12 +159,19 @@ inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& radiance, 
 }
 
 // What a render interrupted during training returns: the last finished iteration's image (an
-// empty film when none finished), with its counts and the training's time and rays.
-inline RenderResult interrupted_in_training(TrainedGuide&& trained, int width, int height) {
+// empty film when none finished), with its counts, interrupted; no time or rays yet (they are
+// the training's: add_guiding_stats adds them).
+inline RenderResult last_training_image(TrainedGuide& trained, int width, int height) {
   RenderResult r{trained.last_image ? std::move(*trained.last_image) : Film(width, height), trained.last_stats};
-  r.stats.seconds = 0.0;  // the iteration's time and rays are the training's, added below
+  r.stats.seconds = 0.0;
   r.stats.rays = 0;
   r.stats.interrupted = true;
+  return r;
+}
+
+// The same with the training's stats, for an estimator with one guide.
+inline RenderResult interrupted_in_training(TrainedGuide&& trained, int width, int height) {
+  RenderResult r = last_training_image(trained, width, height);
   add_guiding_stats(r.stats, trained);
   return r;
 }

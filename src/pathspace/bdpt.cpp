@@ -65,11 +65,8 @@ RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera,
         control);
   }
   if (control.cancelled()) {
-    const bool light_image = importance.last_image.has_value();
-    RenderResult r = interrupted_in_training(std::move(light_image ? importance : radiance), camera.width(),
-                                             camera.height());
-    r.stats.seconds = 0.0;
-    r.stats.rays = 0;
+    TrainedGuide& last = importance.last_image ? importance : radiance;
+    RenderResult r = last_training_image(last, camera.width(), camera.height());
     add_guiding_stats(r.stats, radiance, importance);
     return r;
   }
