@@ -123,13 +123,44 @@ def test_guided_stats_say_what_training_took(cornell: dualight.Scene, method: st
     )
     stats = image.stats
     g = stats["guiding"]
-    assert stats["spp"] == 64  # training comes on top of the image's samples
     assert g["iterations"] == 5 and g["training_spp"] == 31  # 1 + 2 + 4 + 8 + 16 <= 32
+    # training comes on top of the image's samples; the image keeps the last two iterations'
+    assert g["kept_spp"] == 8 + 16 and stats["spp"] == 64 + 8 + 16
     assert g["spatial_leaves"] >= 1 and g["directional_nodes"] >= 1 and g["records"] > 0
     assert 0.5 <= g["bsdf_fraction_min"] <= g["bsdf_fraction"] <= g["bsdf_fraction_max"] <= 1.0
     assert stats["seconds"] == pytest.approx(g["training_seconds"] + g["rendering_seconds"])
     unguided = dualight.render(cornell, method, spp=64, seed=2, progress=False)
     assert "guiding" not in unguided.stats
+
+
+@pytest.mark.parametrize("method", ["path", "light"])
+def test_the_image_keeps_the_last_training_iterations_samples(
+    cornell: dualight.Scene, method: str
+) -> None:
+    """keep_iterations=k adds the samples of the last k training iterations to the image's own
+    (the same own samples whatever k: same seed): its variance drops by about the share of
+    samples added; k=0 keeps none, and the image is then the render's own samples."""
+    options = {"training": 0.5, "adjoint_roulette": False}
+    images = {
+        k: dualight.render(
+            cornell,
+            method,
+            spp=64,
+            seed=3,
+            guiding={**options, "keep_iterations": k},
+            progress=False,
+        )
+        for k in (0, 1, 3)
+    }
+    kept = {k: im.stats["guiding"]["kept_spp"] for k, im in images.items()}
+    assert kept == {0: 0, 1: 16, 3: 4 + 8 + 16}
+    assert all(im.stats["spp"] == 64 + kept[k] for k, im in images.items())
+    variance = {k: float(im.variance.mean()) for k, im in images.items()}
+    # Cornell: guided and unguided samples are alike, so variance ~ 1 / samples
+    for k in (1, 3):
+        ratio = variance[k] / variance[0]
+        assert 0.8 * 64 / (64 + kept[k]) < ratio < 1.1 * 64 / (64 + kept[k])
+    assert not np.array_equal(np.asarray(images[0]), np.asarray(images[1]))
 
 
 def test_guided_bdpt_stats_hold_both_guides(cornell: dualight.Scene) -> None:
@@ -153,7 +184,12 @@ def test_guided_bdpt_stats_hold_both_guides(cornell: dualight.Scene) -> None:
 def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
     """With the BSDF always chosen the guide draws no random number and changes no density:
     the unguided image (BDPT: its MIS weights too)."""
-    fixed = {"learn_bsdf_fraction": False, "bsdf_fraction": 1.0, "adjoint_roulette": False}
+    fixed = {
+        "learn_bsdf_fraction": False,
+        "bsdf_fraction": 1.0,
+        "adjoint_roulette": False,
+        "keep_iterations": 0,
+    }
     for method in ("path", "light", "bdpt"):
         guided = dualight.render(cornell, method, spp=16, seed=4, guiding=fixed, progress=False)
         plain = dualight.render(cornell, method, spp=16, seed=4, progress=False)
@@ -234,6 +270,8 @@ def test_bad_guiding_input_is_named(cornell: dualight.Scene) -> None:
         ("rho", 0.0),
         ("spatial_threshold", 0),
         ("max_records", 1 << 30),
+        ("keep_iterations", 65),
+        ("keep_iterations", -1),
         ("training", float("nan")),
     ):
         with pytest.raises(ValueError, match=f"guide_{key}"):

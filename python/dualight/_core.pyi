@@ -410,8 +410,8 @@ class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -427,6 +427,7 @@ class PathTracerOptions:
         strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -450,6 +451,11 @@ class PathTracerOptions:
     def guide_bsdf_fraction(self) -> float:
         """
         Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_keep_iterations(self) -> int:
+        """
+        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:
@@ -575,8 +581,8 @@ class LightTracerOptions:
     """
     Options of the light tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the light tracer. Keywords only: an option left out keeps its default above (the C++ LightTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -591,6 +597,7 @@ class LightTracerOptions:
         first_sample: First sample index rendered (one task of a split render; see Film).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -614,6 +621,11 @@ class LightTracerOptions:
     def guide_bsdf_fraction(self) -> float:
         """
         Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_keep_iterations(self) -> int:
+        """
+        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:
@@ -689,8 +701,8 @@ class BdptOptions:
     """
     Options of bidirectional path tracing.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -708,6 +720,7 @@ class BdptOptions:
         strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -731,6 +744,11 @@ class BdptOptions:
     def guide_bsdf_fraction(self) -> float:
         """
         Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
+        """
+    @property
+    def guide_keep_iterations(self) -> int:
+        """
+        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:

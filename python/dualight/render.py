@@ -376,15 +376,19 @@ def render(
         where it is) is far below its pixel's value, estimated by the last training image,
         goes on with probability at least 0.3; one far above it splits into up to 16 paths.
         A dict sets the guide's options: ``training`` (share of the budget: of ``spp``, added
-        on top so the image has ``spp`` samples per pixel, or of ``time_limit``, counted in
-        it; default 0.25), ``bsdf_fraction`` (least probability of sampling the BSDF, 0.5;
-        each spatial leaf learns its own from how the previous iteration's guide did on its
-        records unless ``learn_bsdf_fraction=False``), ``adjoint_roulette`` (True),
-        ``spatial_threshold`` (records a spatial leaf may hold at 1 spp, 1000), ``rho``
-        (directional subdivision, 0.01) and ``max_records``. ``image.stats["guiding"]``
-        reports the iterations, training and rendering seconds, the trees' sizes, the BSDF
-        fraction and the paths splitting added and the roulette stopped; ``seconds``
-        includes the training. :func:`dualight.train_guide` returns the guide itself, to
+        on top, or of ``time_limit``, counted in it; default 0.25), ``keep_iterations``
+        (``"path"`` and ``"light"``: the image keeps the samples of that many last training
+        iterations, default 2, which hold 3/4 of the training's; every sample is unbiased
+        whatever guide drew it, so the image is their plain mean; with ``spp`` it then has
+        ``spp`` plus ``stats["guiding"]["kept_spp"]`` samples per pixel),
+        ``bsdf_fraction`` (least probability of sampling the BSDF, 0.5; each spatial leaf
+        learns its own from how the previous iteration's guide did on its records unless
+        ``learn_bsdf_fraction=False``), ``adjoint_roulette`` (True), ``spatial_threshold``
+        (records a spatial leaf may hold at 1 spp, 1000), ``rho`` (directional subdivision,
+        0.01) and ``max_records``. ``image.stats["guiding"]`` reports the iterations,
+        training and rendering seconds, the trees' sizes, the BSDF fraction, the paths
+        splitting added and the roulette stopped, and the kept samples; ``seconds`` includes
+        the training. :func:`dualight.train_guide` returns the guide itself, to
         draw.
     guide_from:
         With ``guiding``: a :class:`dualight.radiosity.Solution` of the same scene (with form

@@ -38,6 +38,7 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["adjoint_roulette"] = g.adjoint_roulette;
   d["split_paths"] = g.split_paths;
   d["roulette_stops"] = g.roulette_stops;
+  d["kept_spp"] = g.kept_spp;
   return d;
 }
 
@@ -149,6 +150,10 @@ void add_guiding_fields(OptionsClass<T>& o) {
              "Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; "
              "with spp the image still has spp samples per pixel.",
              strictly_within(0.0, 1.0))
+      .field("guide_keep_iterations", &GuidingOptions::guide_keep_iterations,
+             "'path' and 'light': the image keeps the samples of this many last training iterations "
+             "(0: none), as unbiased as its own; the stats' kept_spp counts them.",
+             up_to(0.0, 64, "(training has at most 21 iterations)"))
       .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
              "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "
              "guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.")

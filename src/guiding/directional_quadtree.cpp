@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/bit_interleave.h"
+
 namespace dualight {
 
 namespace {
@@ -50,9 +52,8 @@ uint32_t square_code(Point2 p) {
     return static_cast<uint32_t>(std::min(65535.f, std::max(0.f, x * 65536.f)));
   };
   const uint32_t u = bits(p.u), v = bits(p.v);
-  uint32_t code = 0;
-  for (int i = kMaxDirectionalDepth - 1; i >= 0; --i) code = (code << 2) | (((u >> i) & 1u) << 1) | ((v >> i) & 1u);
-  return code;
+  static_assert(kMaxDirectionalDepth == 16, "16 bits of each coordinate");
+  return (spread_bits_2(u) << 1) | spread_bits_2(v);
 }
 
 namespace {

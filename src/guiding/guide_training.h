@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -54,6 +55,14 @@ struct TrainedGuide {
   // roulette's pixel estimates, and what a render interrupted during training returns.
   std::optional<Film> last_image;
   RenderStats last_stats;
+  // The last finished iterations' samples (at most guide_keep_iterations, oldest first), which
+  // the image keeps (keep_training_samples).
+  struct Kept {
+    uint32_t spp;
+    uint64_t samples;
+    FilmAccumulators film;
+  };
+  std::deque<Kept> kept;
 };
 
 // The scene's box, grown a little so every vertex falls inside.
@@ -95,6 +104,10 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
                               collector, film);
     out.rays += s.rays;
     if (s.interrupted || control.cancelled()) break;
+    if (g.guide_keep_iterations > 0) {
+      if (out.kept.size() >= g.guide_keep_iterations) out.kept.pop_front();
+      out.kept.push_back({spp, s.samples, film.accumulators()});
+    }
     out.last_image = std::move(film);
     out.last_stats = s;
     GuideRecords records = collector.take();
@@ -146,6 +159,17 @@ inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& trained) {
   stats.guiding.rendering_seconds = stats.seconds;
   stats.seconds += trained.stats.training_seconds;
   stats.rays += trained.rays;
+}
+
+// Adds the kept training iterations' samples to the image's film (oldest first, a fixed order)
+// and counts them in its stats (after add_guiding_stats): the image is the mean of all its samples.
+inline void keep_training_samples(Film& film, RenderStats& stats, const TrainedGuide& trained) {
+  for (const TrainedGuide::Kept& k : trained.kept) {
+    film.add_accumulators(k.film);
+    stats.samples += k.samples;
+    stats.spp += k.spp;
+    stats.guiding.kept_spp += k.spp;
+  }
 }
 
 // Guided BDPT's stats: both guides', and both trainings' time and rays in the render's.

@@ -14,6 +14,12 @@ struct GuidingOptions {
   // doubling samples per pixel (1, 2, 4, ...); the image is rendered with the last guide. With
   // spp, training adds its share on top: the image has spp samples per pixel.
   float guide_training = 0.25f;
+  // The image keeps the samples of this many last training iterations (0: none), added to its own:
+  // every sample is an unbiased estimate whatever guide drew it, so the image stays their plain
+  // mean, and the training's cost is partly recovered. The last iterations hold 3/4 of the training's
+  // samples and were guided by trees close to the final one. 'path' and 'light' only: BDPT trains
+  // with the path and light tracers, other estimators.
+  uint32_t guide_keep_iterations = 2;
   // Probability of sampling the BSDF instead of the guide (one-sample MIS, guided_sampling.h):
   // learnt per spatial leaf, at least guide_bsdf_fraction (sd_tree.h), or guide_bsdf_fraction
   // everywhere.

@@ -7,6 +7,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "core/bit_interleave.h"
+
 namespace dualight {
 
 namespace {
@@ -60,17 +62,12 @@ void split_cell(const Vec3& lo, const Vec3& hi, int axis, float split, Vec3& low
 }
 
 uint64_t spatial_code(const Vec3& p, const Vec3& lo, const Vec3& scale) {
-  uint64_t code = 0;
   uint32_t q[3];
   for (int a = 0; a < 3; ++a) {
     const float x = (p[a] - lo[a]) * scale[a];
     q[a] = static_cast<uint32_t>(std::min(static_cast<float>((1u << kMortonBits) - 1), std::max(0.f, x)));
   }
-  for (int i = kMortonBits - 1; i >= 0; --i) {
-    code = (code << 3) | (static_cast<uint64_t>((q[0] >> i) & 1u) << 2) | (static_cast<uint64_t>((q[1] >> i) & 1u) << 1) |
-           ((q[2] >> i) & 1u);
-  }
-  return code;
+  return (spread_bits_3(q[0]) << 2) | (spread_bits_3(q[1]) << 1) | spread_bits_3(q[2]);
 }
 
 }  // namespace

@@ -40,13 +40,15 @@ RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const Bd
 }
 
 // A guide's training options from BDPT's: the same budget, depths and threads, half the training
-// share (two guides share it), on their own seeds.
+// share (two guides share it), on their own seeds. Their samples are the path and light
+// tracers', not BDPT's: the image keeps none.
 template <class Options>
 Options guide_training_options(const BdptOptions& bdpt, uint64_t seed) {
   Options o;
   static_cast<EstimatorOptions&>(o) = bdpt;
   static_cast<GuidingOptions&>(o) = bdpt;
   o.guide_training = 0.5f * bdpt.guide_training;
+  o.guide_keep_iterations = 0;
   o.seed = seed;
   return o;
 }

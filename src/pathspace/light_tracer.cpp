@@ -166,7 +166,7 @@ RenderStats drive_light(const Scene& scene, const PinholeCamera& camera, const L
   });
 }
 
-// Renders the image with the guide of `trained`, then adds the training's stats.
+// Renders the image with the guide of `trained`, then adds the training's stats and kept samples.
 RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                                  RenderControl& control) {
   TrainedGuide trained = train_importance_guide(scene, camera, options, control);
@@ -176,6 +176,7 @@ RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera
   result.stats = drive_light(scene, camera, final_options, control, result.film,
                              {{trained.tree.get()}, nullptr});
   add_guiding_stats(result.stats, trained);
+  keep_training_samples(result.film, result.stats, trained);
   return result;
 }
 

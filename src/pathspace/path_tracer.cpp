@@ -302,7 +302,7 @@ std::vector<float> pixel_estimates(const std::vector<double>& image, const Pinho
   return out;
 }
 
-// Renders the image with the guide of `trained`, then adds the training's stats.
+// Renders the image with the guide of `trained`, then adds the training's stats and kept samples.
 RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                 RenderControl& control) {
   TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
@@ -315,6 +315,7 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
   result.stats =
       drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()}, nullptr, &estimates);
   add_guiding_stats(result.stats, trained);
+  keep_training_samples(result.film, result.stats, trained);
   result.stats.guiding.adjoint_roulette = !estimates.empty();
   result.stats.guiding.split_paths = result.stats.split_paths;
   result.stats.guiding.roulette_stops = result.stats.roulette_stops;

@@ -48,6 +48,7 @@ struct GuidingStats {
   bool adjoint_roulette = false;     // the image's paths played adjoint-driven roulette and splitting
   uint64_t split_paths = 0;          // paths splitting added to the image's samples
   uint64_t roulette_stops = 0;       // paths the roulette stopped
+  uint32_t kept_spp = 0;             // samples per pixel of training iterations the image kept
 };
 
 struct RenderStats {
