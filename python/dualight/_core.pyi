@@ -431,7 +431,7 @@ class PathTracerOptions:
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
-        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         guide_rho: A directional node holding more than this share of its leaf's value is split.
         guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
@@ -445,7 +445,7 @@ class PathTracerOptions:
     @property
     def guide_adjoint_roulette(self) -> bool:
         """
-        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         """
     @property
     def guide_bsdf_fraction(self) -> float:
@@ -601,7 +601,7 @@ class LightTracerOptions:
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
-        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         guide_rho: A directional node holding more than this share of its leaf's value is split.
         guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
@@ -615,7 +615,7 @@ class LightTracerOptions:
     @property
     def guide_adjoint_roulette(self) -> bool:
         """
-        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         """
     @property
     def guide_bsdf_fraction(self) -> float:
@@ -724,7 +724,7 @@ class BdptOptions:
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
-        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        guide_adjoint_roulette: 'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         guide_rho: A directional node holding more than this share of its leaf's value is split.
         guide_max_records: Records one training iteration may keep (24 bytes each); training stops before more.
         """
@@ -738,7 +738,7 @@ class BdptOptions:
     @property
     def guide_adjoint_roulette(self) -> bool:
         """
-        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render, from the guide's reflected-radiance estimates and the last iteration's image.
+        'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the final render and the training iterations after the first, from the guide's reflected-radiance estimates and the previous iteration's image.
         """
     @property
     def guide_bsdf_fraction(self) -> float:

@@ -374,7 +374,8 @@ def render(
         Russian roulette and splitting (Vorba and Křivánek 2016): a path whose expected
         contribution (its throughput times the guide's estimate of the radiance reflected
         where it is) is far below its pixel's value, estimated by the last training image,
-        goes on with probability at least 0.3; one far above it splits into up to 16 paths.
+        goes on with probability at least 0.3; one far above it splits into up to 16 paths
+        (the training's iterations after the first play it too, from the previous one's).
         A dict sets the guide's options: ``training`` (share of the budget: of ``spp``, added
         on top, or of ``time_limit``, counted in it; default 0.25), ``keep_iterations``
         (``"path"`` and ``"light"``: the image keeps the samples of that many last training

@@ -164,7 +164,8 @@ void add_guiding_fields(OptionsClass<T>& o) {
              "Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).", at_least(1))
       .field("guide_adjoint_roulette", &GuidingOptions::guide_adjoint_roulette,
              "'path': adjoint-driven Russian roulette and splitting (Vorba and Krivanek 2016) in the "
-             "final render, from the guide's reflected-radiance estimates and the last iteration's image.")
+             "final render and the training iterations after the first, from the guide's reflected-radiance "
+             "estimates and the previous iteration's image.")
       .field("guide_rho", &GuidingOptions::guide_rho,
              "A directional node holding more than this share of its leaf's value is split.",
              strictly_within(0.0, 1.0))

@@ -28,8 +28,9 @@ struct GuidingOptions {
   // Records a spatial leaf may hold in an iteration of 1 sample per pixel; the bound grows with
   // the square root of the iteration's samples per pixel [MGN17, sec. 3.3].
   uint32_t guide_spatial_threshold = 1000;
-  // Path tracing: adjoint-driven Russian roulette and splitting in the final render, from the
-  // guide's estimate of reflected radiance and the last iteration's image (adjoint_rr.h).
+  // Path tracing: adjoint-driven Russian roulette and splitting in the final render and in the
+  // training iterations after the first, from the guide's estimate of reflected radiance and the
+  // previous iteration's image (adjoint_rr.h).
   bool guide_adjoint_roulette = true;
   float guide_rho = 0.01f;  // directional subdivision: a node with more of its leaf's value is split
   // Records one training iteration may keep (24 bytes each): training stops before one would need more.

@@ -41,7 +41,8 @@ RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const Bd
 
 // A guide's training options from BDPT's: the same budget, depths and threads, half the training
 // share (two guides share it), on their own seeds. Their samples are the path and light
-// tracers', not BDPT's: the image keeps none.
+// tracers', not BDPT's: the image keeps none. BDPT plays no adjoint-driven roulette, and its
+// radiance guide is trained without it, as before (not measured with it).
 template <class Options>
 Options guide_training_options(const BdptOptions& bdpt, uint64_t seed) {
   Options o;
@@ -49,6 +50,7 @@ Options guide_training_options(const BdptOptions& bdpt, uint64_t seed) {
   static_cast<GuidingOptions&>(o) = bdpt;
   o.guide_training = 0.5f * bdpt.guide_training;
   o.guide_keep_iterations = 0;
+  o.guide_adjoint_roulette = false;
   o.seed = seed;
   return o;
 }

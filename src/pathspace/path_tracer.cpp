@@ -76,8 +76,9 @@ inline Color next_event(const Scene& scene, const SurfaceHit& hit, const Bsdf& b
 }
 
 // The guide of a guided render (guiding/), and where a training iteration keeps its records.
-// With pixel_estimate > 0 (the final render's sample of a pixel of that estimated value, never a
-// training iteration's) paths play adjoint-driven roulette and splitting (adjoint_rr.h).
+// With pixel_estimate > 0 (the sample's pixel's value, estimated by the previous iteration's
+// image: the final render's samples, and the training's after its first iteration) paths play
+// adjoint-driven roulette and splitting (adjoint_rr.h).
 struct PathGuiding {
   const SdTree* tree = nullptr;
   GuideRecords* records = nullptr;
@@ -86,7 +87,9 @@ struct PathGuiding {
 
 // The vertices of one camera path that sampled a non-Dirac direction, with the radiance that
 // arrived along each: every later contribution over the throughput there (guide_record.h). They
-// become records when the path ends.
+// become records when the path ends. Where adjoint-driven roulette splits the path, the vertices
+// form a tree: each knows the vertex before it on its branch, and a contribution arrived along the
+// directions of its branch's vertices only.
 class RadianceRecorder {
  public:
   explicit RadianceRecorder(GuideRecords* out) : out_(out) {}
@@ -100,15 +103,20 @@ class RadianceRecorder {
   }
   bool on() const { return out_ != nullptr; }
   // A direction wi sampled at p with density pdf_w (the BSDF's: pdf_bsdf), f |cos| there fcos; beta
-  // the throughput after it.
-  void vertex(const Vec3& p, const Vec3& wi, float pdf_w, float pdf_bsdf, const Color& fcos, const Color& beta) {
-    if (out_ != nullptr && pdf_w > 0.f) pending_.push_back({p, wi, pdf_w, pdf_bsdf, fcos, beta, Color(0.f)});
+  // the throughput after it; `before` the branch's last vertex (-1: none). Returns the new vertex
+  // (-1 when it is not kept).
+  int vertex(const Vec3& p, const Vec3& wi, float pdf_w, float pdf_bsdf, const Color& fcos, const Color& beta,
+             int before) {
+    if (out_ == nullptr || !(pdf_w > 0.f)) return before;
+    pending_.push_back({p, wi, pdf_w, pdf_bsdf, fcos, beta, Color(0.f), before});
+    return static_cast<int>(pending_.size()) - 1;
   }
-  // Adds contribution C to the path's estimate: it arrived along every direction sampled so far.
-  void add(Color& L, const Color& C) {
+  // Adds contribution C to the path's estimate: it arrived along every direction sampled on its
+  // branch up to vertex `last`.
+  void add(Color& L, const Color& C, int last) {
     L += C;
     if (out_ == nullptr || is_black(C)) return;
-    for (Pending& v : pending_) v.L += C;
+    for (int i = last; i >= 0; i = pending_[static_cast<size_t>(i)].before) pending_[static_cast<size_t>(i)].L += C;
   }
 
  private:
@@ -116,6 +124,7 @@ class RadianceRecorder {
     Vec3 p, wi;
     float pdf_w, pdf_bsdf;
     Color fcos, beta, L;
+    int before;
   };
   GuideRecords* out_;
   std::vector<Pending> pending_;
@@ -125,8 +134,8 @@ class RadianceRecorder {
 struct NoRecorder {
   explicit NoRecorder(GuideRecords*) {}
   static constexpr bool on() { return false; }
-  void vertex(const Vec3&, const Vec3&, float, float, const Color&, const Color&) {}
-  static void add(Color& L, const Color& C) { L += C; }
+  int vertex(const Vec3&, const Vec3&, float, float, const Color&, const Color&, int before) { return before; }
+  static void add(Color& L, const Color& C, int) { L += C; }
 };
 
 // Where a camera path is between two vertices.
@@ -137,6 +146,7 @@ struct CameraPathState {
   bool prev_delta = true;   // the camera ray, like a delta bounce, cannot be found by NEE
   int depth = 1;            // the number of segments up to and including `ray`: the index of the vertex it hits
   int paths = 1;            // how many paths splitting has made of the camera sample so far
+  int recorded = -1;        // the recorder's last vertex on this path's branch (-1: none)
 };
 
 // Adjoint-driven roulette and splitting (adjoint_rr.h) for a path at a vertex of `leaf`, in a
@@ -169,14 +179,16 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
     if (!scene.intersect(s.ray, hit)) {
       if (scene.environment() != nullptr) {
         recorder.add(L, environment_seen(scene, *scene.environment(), s.ray.d, s.beta, s.prev_pdf_w, s.prev_delta,
-                                         opt.strategies));
+                                         opt.strategies),
+                     s.recorded);
       }
       return;
     }
 
     const Vec3 wo_world = -s.ray.d;
     if (hit.emitter != nullptr) {
-      recorder.add(L, emission_seen(scene, hit, wo_world, s.beta, s.prev_pdf_w, s.prev_delta, opt.strategies));
+      recorder.add(L, emission_seen(scene, hit, wo_world, s.beta, s.prev_pdf_w, s.prev_delta, opt.strategies),
+                   s.recorded);
     }
     if (!depth_allows(s.depth + 1)) return;
 
@@ -201,8 +213,9 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
     } else if (has_emitters) {
       const float u_select = sampler.next_1d();
       const Point2 u_light = sampler.next_2d();
-      recorder.add(L, next_event(scene, hit, bsdf, guide, wo_world, s.beta, u_select, u_light, opt.strategies,
-                                 counters));
+      recorder.add(L,
+                   next_event(scene, hit, bsdf, guide, wo_world, s.beta, u_select, u_light, opt.strategies, counters),
+                   s.recorded);
     }
 
     RouletteOrSplit go_on;
@@ -222,8 +235,8 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
       next.prev_delta = bs.delta;
       const Vec3 wi_world = frame.to_world(bs.wi);
       if (!bs.delta && recorder.on()) {
-        recorder.vertex(hit.p, wi_world, bs.pdf_w, pdf_w(bsdf, wo, bs.wi, TransportMode::Radiance),
-                        bs.weight * bs.pdf_w, next.beta);
+        next.recorded = recorder.vertex(hit.p, wi_world, bs.pdf_w, pdf_w(bsdf, wo, bs.wi, TransportMode::Radiance),
+                                        bs.weight * bs.pdf_w, next.beta, next.recorded);
       }
       next.ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n),
                      wi_world};
@@ -326,11 +339,16 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
 
 TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                   RenderControl& control) {
+  // With adjoint-driven roulette, iterations after the first play it too, from the previous
+  // iteration's image and tree: their samples are then like the image's, worth keeping.
+  std::vector<float> estimates;
   return train_guide(scene, options, options, camera.width(), camera.height(), control,
                      options.guide_start_radiance,
                      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
                        const PathTracerOptions o = iteration_options(options, spp, seed);
-                       return drive_path(scene, camera, o, control, film, {tree}, &collector);
+                       const RenderStats s = drive_path(scene, camera, o, control, film, {tree}, &collector, &estimates);
+                       if (options.guide_adjoint_roulette) estimates = pixel_estimates(film_luminance(film), camera);
+                       return s;
                      });
 }
 
