@@ -104,7 +104,7 @@ class RadianceRecorder {
   bool on() const { return out_ != nullptr; }
   // A direction wi sampled at p with density pdf_w (the BSDF's: pdf_bsdf), f |cos| there fcos; beta
   // the throughput after it; `before` the branch's last vertex (-1: none). Returns the new vertex
-  // (-1 when it is not kept).
+  // (`before` when it is not kept).
   int vertex(const Vec3& p, const Vec3& wi, float pdf_w, float pdf_bsdf, const Color& fcos, const Color& beta,
              int before) {
     if (out_ == nullptr || !(pdf_w > 0.f)) return before;
