@@ -365,10 +365,12 @@ def render(
         ``True`` first trains a guide in iterations of 1, 2, 4, ... samples per pixel, each
         guided by the last: for ``"path"`` the radiance that camera paths found, for
         ``"light"`` the importance that light paths carried to the camera (where a particle
-        will be seen); ``"bdpt"`` trains both (each on half the training share), samples
-        camera subpaths from the radiance guide and light subpaths from the importance
-        guide, and weighs its strategies by MIS with the guided densities in both directions
-        (Vorba et al. 2014); its ``stats["guiding"]`` holds ``radiance`` and ``importance``.
+        will be seen); ``"bdpt"`` trains both together from its own samples (each strategy's
+        MIS-weighted contribution teaches the radiance guide along its camera subpath and the
+        importance guide along its light subpath), samples camera subpaths from the radiance
+        guide and light subpaths from the importance guide, and weighs its strategies by MIS
+        with the guided densities in both directions (Vorba et al. 2014); its
+        ``stats["guiding"]`` holds ``radiance`` and ``importance``.
         The image is then rendered sampling each direction from the guide or the BSDF (one-
         sample MIS), so it stays unbiased; for ``"path"`` its paths also play adjoint-driven
         Russian roulette and splitting (Vorba and Křivánek 2016): a path whose expected
@@ -378,8 +380,8 @@ def render(
         (the training's iterations after the first play it too, from the previous one's).
         A dict sets the guide's options: ``training`` (share of the budget: of ``spp``, added
         on top, or of ``time_limit``, counted in it; default 0.25), ``keep_iterations``
-        (``"path"`` and ``"light"``: the image keeps the samples of that many last training
-        iterations, default 2, which hold 3/4 of the training's; every sample is unbiased
+        (the image keeps the samples of that many last training iterations, default 2,
+        which hold 3/4 of the training's; with ``strategy_images`` none; every sample is unbiased
         whatever guide drew it, so the image is their plain mean; with ``spp`` it then has
         ``spp`` plus ``stats["guiding"]["kept_spp"]`` samples per pixel),
         ``bsdf_fraction`` (least probability of sampling the BSDF, 0.5; each spatial leaf

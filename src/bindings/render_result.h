@@ -58,8 +58,9 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["time_limited"] = s.time_limited;
   if (s.guiding.used && s.importance_guiding.used) {
     py::dict g;  // guided BDPT: two guides
-    g["training_seconds"] = s.guiding.training_seconds + s.importance_guiding.training_seconds;
+    g["training_seconds"] = s.guiding.training_seconds;  // one training made both
     g["rendering_seconds"] = s.guiding.rendering_seconds;
+    g["kept_spp"] = s.guiding.kept_spp;
     g["radiance"] = guiding_dict(s.guiding);
     g["importance"] = guiding_dict(s.importance_guiding);
     d["guiding"] = g;

@@ -6,6 +6,7 @@
 // With spp the iterations and the tree are a function of the seed alone, whatever the threads.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -72,15 +73,42 @@ inline void guide_bounds(const Scene& scene, Vec3& lo, Vec3& hi) {
   hi = scene.bounds_max() + pad;
 }
 
-// run(spp, seed, guide, collector, film) renders one iteration (guide may be null) on `film`
-// (width x height) and returns its stats. `start` (may be null) guides the first iteration.
-template <class RunIteration>
-TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g, int width,
-                         int height, RenderControl& control, std::shared_ptr<const SdTree> start,
-                         const RunIteration& run) {
-  TrainedGuide out;
-  out.stats.seeded = start != nullptr;
-  out.tree = std::move(start);
+// The tree an iteration's records build (reordering them), over the guide before it.
+inline std::shared_ptr<const SdTree> next_tree(GuideRecords& records, const Vec3& lo, const Vec3& hi,
+                                               const GuidingOptions& g, uint32_t spp, const SdTree* previous) {
+  SdTreeSettings settings;
+  settings.spatial_threshold =
+      static_cast<uint32_t>(std::min(4.0e9, g.guide_spatial_threshold * std::sqrt(static_cast<double>(spp))));
+  settings.rho = g.guide_rho;
+  settings.learn_bsdf_fraction = g.guide_learn_bsdf_fraction;
+  settings.bsdf_fraction = g.guide_bsdf_fraction;
+  return std::make_shared<const SdTree>(records, lo, hi, settings, previous);
+}
+
+// A trained guide's final stats: the training's time and its tree's sizes.
+inline void finish_guide_stats(TrainedGuide& out, double seconds) {
+  out.stats.training_seconds = seconds;
+  if (!out.tree) return;
+  out.stats.spatial_leaves = out.tree->leaves();
+  out.stats.directional_nodes = out.tree->directional_nodes();
+  out.tree->bsdf_fractions(out.stats.bsdf_fraction, out.stats.bsdf_fraction_min, out.stats.bsdf_fraction_max);
+}
+
+// Trains N guides in the same iterations. run(spp, seed, trees, collectors, film) renders one
+// iteration on `film` (width x height), sampling from `trees` (std::array of N, each may be
+// null) and recording guide i's records into collectors[i], and returns its stats. `start` (each
+// may be null) guides the first iteration. The iterations' images, kept samples and rays are the
+// first guide's (guide_training.h's TrainedGuide); every guide has the training's counts and time.
+template <size_t N, class RunIteration>
+std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g,
+                                         int width, int height, RenderControl& control,
+                                         std::array<std::shared_ptr<const SdTree>, N> start, const RunIteration& run) {
+  std::array<TrainedGuide, N> out;
+  for (size_t i = 0; i < N; ++i) {
+    out[i].stats.seeded = start[i] != nullptr;
+    out[i].tree = std::move(start[i]);
+  }
+  TrainedGuide& first = out[0];
   const Stopwatch elapsed;
   const double spp_budget = est.spp > 0 ? std::floor(g.guide_training * est.spp) : 0.0;
   const double time_budget = est.time_limit > 0.0 ? g.guide_training * est.time_limit : 0.0;
@@ -88,50 +116,58 @@ TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const 
   guide_bounds(scene, lo, hi);
   uint32_t spp = 1, spp_done = 0;
   double last_seconds = 0.0;
-  size_t last_records = 0;
+  size_t last_records = 0;  // the most any guide kept in the last iteration
   for (int k = 0;; ++k, spp *= 2) {
     if (est.spp > 0 && spp_done + spp > spp_budget) break;
     if (time_budget > 0.0 && elapsed() + 2.0 * last_seconds > time_budget) break;
     if (2.0 * static_cast<double>(last_records) > g.guide_max_records) {
-      out.stats.stopped_by_records = true;
+      for (TrainedGuide& t : out) t.stats.stopped_by_records = true;
       break;
     }
     if (control.cancelled() || spp > (1u << 20)) break;
-    const double start = elapsed();
-    RecordCollector collector;
+    const double start_time = elapsed();
+    std::array<RecordCollector, N> collectors;
+    std::array<const SdTree*, N> trees;
+    for (size_t i = 0; i < N; ++i) trees[i] = out[i].tree.get();
     Film film(width, height);
-    const RenderStats s = run(spp, hash_combine(est.seed, 0x67756964ull + static_cast<uint64_t>(k)), out.tree.get(),
-                              collector, film);
-    out.rays += s.rays;
+    const RenderStats s =
+        run(spp, hash_combine(est.seed, 0x67756964ull + static_cast<uint64_t>(k)), trees, collectors, film);
+    first.rays += s.rays;
     if (s.interrupted || control.cancelled()) break;
     if (g.guide_keep_iterations > 0) {
-      if (out.kept.size() >= g.guide_keep_iterations) out.kept.pop_front();
-      out.kept.push_back({spp, s.samples, film.accumulators()});
+      if (first.kept.size() >= g.guide_keep_iterations) first.kept.pop_front();
+      first.kept.push_back({spp, s.samples, film.accumulators()});
     }
-    out.last_image = std::move(film);
-    out.last_stats = s;
-    GuideRecords records = collector.take();
-    last_records = records.size();
-    SdTreeSettings settings;
-    settings.spatial_threshold = static_cast<uint32_t>(
-        std::min(4.0e9, g.guide_spatial_threshold * std::sqrt(static_cast<double>(spp))));
-    settings.rho = g.guide_rho;
-    settings.learn_bsdf_fraction = g.guide_learn_bsdf_fraction;
-    settings.bsdf_fraction = g.guide_bsdf_fraction;
-    out.tree = std::make_shared<const SdTree>(records, lo, hi, settings, out.tree.get());
+    first.last_image = std::move(film);
+    first.last_stats = s;
     spp_done += spp;
-    last_seconds = elapsed() - start;
-    out.stats.iterations = k + 1;
-    out.stats.training_spp = spp_done;
-    out.stats.records = last_records;
+    last_records = 0;
+    for (size_t i = 0; i < N; ++i) {
+      GuideRecords records = collectors[i].take();
+      last_records = std::max(last_records, records.size());
+      out[i].tree = next_tree(records, lo, hi, g, spp, out[i].tree.get());
+      out[i].stats.iterations = k + 1;
+      out[i].stats.training_spp = spp_done;
+      out[i].stats.records = records.size();
+    }
+    last_seconds = elapsed() - start_time;
   }
-  out.stats.training_seconds = elapsed();
-  if (out.tree) {
-    out.stats.spatial_leaves = out.tree->leaves();
-    out.stats.directional_nodes = out.tree->directional_nodes();
-    out.tree->bsdf_fractions(out.stats.bsdf_fraction, out.stats.bsdf_fraction_min, out.stats.bsdf_fraction_max);
-  }
+  const double seconds = elapsed();
+  for (TrainedGuide& t : out) finish_guide_stats(t, seconds);
   return out;
+}
+
+// One guide: run(spp, seed, guide, collector, film) as train_guides's run for N = 1.
+template <class RunIteration>
+TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g, int width,
+                         int height, RenderControl& control, std::shared_ptr<const SdTree> start,
+                         const RunIteration& run) {
+  auto trained = train_guides<1>(
+      scene, est, g, width, height, control, {std::move(start)},
+      [&](uint32_t spp, uint64_t seed, const std::array<const SdTree*, 1>& trees,
+          std::array<RecordCollector, 1>& collectors,
+          Film& film) { return run(spp, seed, trees[0], collectors[0], film); });
+  return std::move(trained[0]);
 }
 
 // A training iteration's options: spp samples on its own seed, no time limit, from sample 0.
@@ -172,14 +208,13 @@ inline void keep_training_samples(Film& film, RenderStats& stats, const TrainedG
   }
 }
 
-// Guided BDPT's stats: both guides', and both trainings' time and rays in the render's.
+// Guided BDPT's stats: both guides' (trained together, train_guides: the training's time and
+// rays, the first guide's, count once).
 inline void add_guiding_stats(RenderStats& stats, const TrainedGuide& radiance, const TrainedGuide& importance) {
   add_guiding_stats(stats, radiance);
   stats.importance_guiding = importance.stats;
   stats.importance_guiding.used = true;
   stats.importance_guiding.rendering_seconds = stats.guiding.rendering_seconds;
-  stats.seconds += importance.stats.training_seconds;
-  stats.rays += importance.rays;
 }
 
 // What a render interrupted during training returns: the last finished iteration's image (an

@@ -17,8 +17,7 @@ struct GuidingOptions {
   // The image keeps the samples of this many last training iterations (0: none), added to its own:
   // every sample is an unbiased estimate whatever guide drew it, so the image stays their plain
   // mean, and the training's cost is partly recovered. The last iterations hold 3/4 of the training's
-  // samples and were guided by trees close to the final one. 'path' and 'light' only: BDPT trains
-  // with the path and light tracers, other estimators.
+  // samples and were guided by trees close to the final one.
   uint32_t guide_keep_iterations = 2;
   // Probability of sampling the BSDF instead of the guide (one-sample MIS, guided_sampling.h):
   // learnt per spatial leaf, at least guide_bsdf_fraction (sd_tree.h), or guide_bsdf_fraction

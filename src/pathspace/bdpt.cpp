@@ -3,14 +3,15 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <utility>
 
 #include "core/rng.h"
+#include "film/pixel_estimate.h"
 #include "guiding/guide_training.h"
 #include "pathspace/bdpt_sample.h"
-#include "pathspace/light_tracer.h"
-#include "pathspace/path_tracer.h"
+#include "pathspace/mlt_importance.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/shadow_ray.h"
 
@@ -26,63 +27,77 @@ std::vector<std::pair<int, int>> bdpt_strategies(int max_depth) {
 
 namespace {
 
+// A guided BDPT training iteration's collectors (the radiance guide's, the importance guide's)
+// and the importance records' pixel weights.
+struct BdptTraining {
+  RecordCollector* radiance = nullptr;
+  RecordCollector* importance = nullptr;
+  const PixelImportance* pixel_weight = nullptr;
+};
+
 RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
-                       RenderControl& control, Film& film, const SubpathGuides& guides) {
+                       RenderControl& control, Film& film, const SubpathGuides& guides,
+                       const BdptTraining* training = nullptr) {
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true,
                                   connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   tbb::enumerable_thread_specific<Subpaths> workspaces;
   const auto estimate = [&](float x, float y, auto& sampler, TraceCounters& counters, SplatList& splats) {
-    return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &film, guides);
+    if (training == nullptr) {
+      return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &film, guides);
+    }
+    const SubpathRecording recording{&training->radiance->local(), &training->importance->local(),
+                                     training->pixel_weight};
+    return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &film, guides,
+                       &recording);
   };
   return with_sampler(options.sampler, [&](auto tag) {
     return drive_pixels<typename decltype(tag)::type>(film, driver, control, estimate);
   });
 }
 
-// A guide's training options from BDPT's: the same budget, depths and threads, half the training
-// share (two guides share it), on their own seeds. Their samples are the path and light
-// tracers', not BDPT's: the image keeps none. BDPT plays no adjoint-driven roulette, and its
-// radiance guide is trained without it, as before (not measured with it).
-template <class Options>
-Options guide_training_options(const BdptOptions& bdpt, uint64_t seed) {
-  Options o;
-  static_cast<EstimatorOptions&>(o) = bdpt;
-  static_cast<GuidingOptions&>(o) = bdpt;
-  o.guide_training = 0.5f * bdpt.guide_training;
-  o.guide_keep_iterations = 0;
-  o.guide_adjoint_roulette = false;
-  o.seed = seed;
-  return o;
+// Trains guided BDPT's two guides together from its own samples: iteration k renders BDPT with
+// iteration k - 1's guides (the first: plain BDPT, or the given start guides) and records, from
+// every strategy's MIS-weighted contribution, the radiance that arrived along the camera
+// subpaths' directions and the importance along the light subpaths' (subpath_records.h). Each
+// guide so learns what its subpaths carry in the combined estimator: the camera subpaths need
+// not find what light subpaths already bring in. The iterations render no strategy images; with
+// them the image keeps no iteration's samples.
+std::array<TrainedGuide, 2> train_bdpt_guides(const Scene& scene, const PinholeCamera& camera,
+                                              const BdptOptions& options, RenderControl& control) {
+  GuidingOptions g = options;
+  if (options.strategy_images) g.guide_keep_iterations = 0;
+  PixelImportance pixel_weight;  // uniform until an iteration's image is there
+  return train_guides<2>(
+      scene, options, g, camera.width(), camera.height(), control,
+      {options.guide_start_radiance, options.guide_start_importance},
+      [&](uint32_t spp, uint64_t seed, const std::array<const SdTree*, 2>& trees,
+          std::array<RecordCollector, 2>& collectors, Film& film) {
+        BdptOptions o = iteration_options(options, spp, seed);
+        o.strategy_images = false;
+        const BdptTraining training{&collectors[0], &collectors[1], &pixel_weight};
+        const RenderStats s = drive_bdpt(scene, camera, o, control, film, {trees[0], trees[1]}, &training);
+        pixel_weight = PixelImportance(film_luminance(film), camera.width(), camera.height(), 2, 0.01);
+        return s;
+      });
 }
 
-// Trains the radiance guide (camera paths) and then the importance guide (light paths), renders
-// the image with both, and adds both trainings' stats. Interrupted during training, the last
-// finished training iteration's image is returned (a path- or light-traced image: unbiased).
+// Trains both guides, renders the image with them, and adds the training's stats and kept
+// samples. Interrupted during training, the last finished training iteration's image is returned.
 RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
                                 RenderControl& control, Film film) {
-  TrainedGuide radiance = train_radiance_guide(
-      scene, camera, guide_training_options<PathTracerOptions>(options, options.seed), control);
-  TrainedGuide importance;
-  if (!control.cancelled()) {
-    importance = train_importance_guide(
-        scene, camera, guide_training_options<LightTracerOptions>(options, hash_combine(options.seed, 0x6c74ull)),
-        control);
-  }
+  std::array<TrainedGuide, 2> trained = train_bdpt_guides(scene, camera, options, control);
+  TrainedGuide &radiance = trained[0], &importance = trained[1];
   if (control.cancelled()) {
-    TrainedGuide& last = importance.last_image ? importance : radiance;
-    RenderResult r = last_training_image(last, camera.width(), camera.height());
+    RenderResult r = last_training_image(radiance, camera.width(), camera.height());
     add_guiding_stats(r.stats, radiance, importance);
     return r;
   }
-  BdptOptions final_options = options;
-  if (options.time_limit > 0.0) {
-    const double training = radiance.stats.training_seconds + importance.stats.training_seconds;
-    final_options.time_limit = std::max(1e-3, options.time_limit - training);
-  }
   RenderResult result{std::move(film), {}};
-  result.stats = drive_bdpt(scene, camera, final_options, control, result.film,
+  result.stats = drive_bdpt(scene, camera, after_training(options, radiance), control, result.film,
                             {radiance.tree.get(), importance.tree.get()});
   add_guiding_stats(result.stats, radiance, importance);
+  keep_training_samples(result.film, result.stats, radiance);
+  result.stats.importance_guiding.kept_spp = result.stats.guiding.kept_spp;
   return result;
 }
 

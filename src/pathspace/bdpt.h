@@ -7,9 +7,9 @@
 // are hard to find from one side: caustics (light -> specular -> diffuse -> eye) and light
 // arriving through small openings.
 //
-// With `guiding` (guided BDPT), a radiance guide and an importance guide are trained first (the
-// path tracer's and the light tracer's training, guiding/guide_training.h, each on half of the
-// training share); camera subpaths then sample directions from the radiance guide, light
+// With `guiding` (guided BDPT), a radiance guide and an importance guide are trained first,
+// together, from guided BDPT's own samples (bdpt.cpp, guiding/guide_training.h); camera subpaths
+// then sample directions from the radiance guide, light
 // subpaths from the importance guide, each mixed with BSDF sampling, and the MIS weights use the
 // mixtures' densities in both directions: pdf_fwd from a subpath's own guide, pdf_rev from the
 // other's [Vorba, Karlík, Šik, Ritschel, Křivánek 2014, sec. 6].

@@ -8,7 +8,9 @@
 #include "film/splat_list.h"
 #include "pathspace/bdpt.h"
 #include "pathspace/connect.h"
+#include "pathspace/mlt_importance.h"
 #include "pathspace/subpath.h"
+#include "pathspace/subpath_records.h"
 
 namespace dualight {
 
@@ -20,7 +22,33 @@ inline size_t strategy_layer(int s, int t) {
 
 struct Subpaths {
   Path camera, light;
+  // What each vertex's strategies contributed (a guided BDPT training iteration's records).
+  std::vector<Color> camera_arrived, light_arrived;
 };
+
+// Where a guided BDPT training iteration (bdpt.cpp) keeps what its strategies carried: radiance
+// records from camera subpaths, importance records from light subpaths. An importance record
+// counts a contribution by pixel_weight at its pixel, as the light tracer's do (light_tracer.cpp).
+struct SubpathRecording {
+  GuideRecords* radiance = nullptr;
+  GuideRecords* importance = nullptr;
+  const PixelImportance* pixel_weight = nullptr;
+};
+
+// Notes weighted contribution c of strategy (s, t) at the subpaths' vertices it came through,
+// landing on `pixel`.
+inline void note_arrival(Subpaths& paths, const SubpathRecording& rec, int s, int t, const Color& c,
+                         uint32_t pixel) {
+  if (!is_finite(c)) return;
+  paths.camera_arrived[static_cast<size_t>(t - 1)] += c;
+  if (s >= 1) paths.light_arrived[static_cast<size_t>(s - 1)] += c * (*rec.pixel_weight)(pixel);
+}
+
+// The records of a sample whose arrivals note_arrival noted.
+inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) {
+  if (paths.camera.size() > 2) record_incident(paths.camera, paths.camera_arrived, TransportMode::Radiance, *rec.radiance);
+  if (paths.light.size() > 2) record_incident(paths.light, paths.light_arrived, TransportMode::Importance, *rec.importance);
+}
 
 // Every strategy (s, t) joining the two subpaths, of depth s + t - 1 within [opt.min_depth,
 // opt.max_depth], that carries light: visit(s, t, unweighted contribution, sampled, raster),
@@ -48,11 +76,12 @@ void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const Bd
 }
 
 // `layers`: the film whose strategy layers receive the own-pixel contributions (only when
-// opt.strategy_images), else unused. `guides`: guided BDPT's (subpath.h), or none.
+// opt.strategy_images), else unused. `guides`: guided BDPT's (subpath.h), or none; `recording`:
+// a training iteration's, or none.
 template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
                   Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers,
-                  const SubpathGuides& guides = {}) {
+                  const SubpathGuides& guides = {}, const SubpathRecording* recording = nullptr) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
   // The camera subpath continues the camera stream, which drew the film position.
   camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters, guides.camera());
@@ -60,6 +89,10 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   light_subpath(scene, sampler, limits, paths.light, counters, guides.light());
   sampler.start_stream(kConnectStream);
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
+  if (recording != nullptr) {
+    paths.camera_arrived.assign(paths.camera.size(), Color(0.f));
+    paths.light_arrived.assign(paths.light.size(), Color(0.f));
+  }
 
   Color L(0.f);
   for_each_strategy(scene, camera, opt, paths, sampler, counters,
@@ -71,13 +104,16 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
                                                 static_cast<uint32_t>(raster.u);
                         splats.add(target, c);
                         if (opt.strategy_images) splats.add(target, c, static_cast<uint32_t>(strategy_layer(s, t) + 1));
+                        if (recording != nullptr) note_arrival(paths, *recording, s, t, c, target);
                       } else {
                         L += c;
+                        if (recording != nullptr) note_arrival(paths, *recording, s, t, c, static_cast<uint32_t>(pixel));
                         if (opt.strategy_images && is_finite(c)) {
                           layers->add_layer_sample(strategy_layer(s, t), pixel, c);
                         }
                       }
                     });
+  if (recording != nullptr) record_subpaths(paths, *recording);
   return L;
 }
 

@@ -12,6 +12,7 @@
 #include "pathspace/mlt_importance.h"
 #include "pathspace/connect.h"
 #include "pathspace/subpath.h"
+#include "pathspace/subpath_records.h"
 
 namespace dualight {
 
@@ -38,29 +39,6 @@ struct ParticleGuiding {
   const PixelImportance* pixel_weight = nullptr;
 };
 
-// Records of the importance that arrived along each non-Dirac direction a light path sampled at
-// a surface: the camera contributions of the vertices after it over the throughput there
-// (guide_record.h), over the solid-angle density of the direction (pdf_fwd of the next vertex in
-// solid angle again).
-void record_importance(const Path& path, const std::vector<Color>& contribution, GuideRecords& out) {
-  Color after(0.f);  // the contributions of vertices k + 1, k + 2, ...
-  for (size_t k = path.size() - 1; k-- > 1;) {
-    after += contribution[k + 1];
-    const Vertex &v = path[k], &next = path[k + 1];
-    if (v.delta || next.at_infinity || !(next.pdf_fwd > 0.f)) continue;
-    const Vec3 d = next.p - v.p;
-    const float dist2 = dot(d, d);
-    const Vec3 w = d / std::sqrt(dist2);
-    const float pdf_w = next.pdf_fwd * dist2 / std::abs(dot(next.n, w));
-    const float pdf_bsdf = surface_pdf_w(v, v.wo, w, TransportMode::Importance);
-    // f |cos| (the shading-normal correction included), where beta is not 0.
-    const auto fcos_of = [&](int c) { return v.beta[c] > 0.f ? next.beta[c] / v.beta[c] * pdf_w : 0.f; };
-    const Color fcos(fcos_of(0), fcos_of(1), fcos_of(2));
-    GuideRecord r;
-    if (make_record(v.p, w, after, next.beta, fcos, pdf_bsdf, pdf_w, r)) out.push_back(r);
-  }
-}
-
 template <class Sampler>
 void trace_particle(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& opt, uint64_t index,
                     Path& path, SplatList& splats, TraceCounters& counters, const ParticleGuiding& guiding,
@@ -79,7 +57,7 @@ void trace_particle(const Scene& scene, const PinholeCamera& camera, const Light
     splats.add(pixel, c);
   }
   splats.end_path();
-  if (recording && path.size() > 2) record_importance(path, contribution, guiding.collector->local());
+  if (recording && path.size() > 2) record_incident(path, contribution, TransportMode::Importance, guiding.collector->local());
 }
 
 template <class Sampler>
