@@ -88,6 +88,10 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   sampler.start_stream(kLightStream);
   light_subpath(scene, sampler, limits, paths.light, counters, guides.light());
   sampler.start_stream(kConnectStream);
+  if (guides.any()) {
+    set_vertex_guides(paths.camera, guides, TransportMode::Radiance);
+    set_vertex_guides(paths.light, guides, TransportMode::Importance);
+  }
   const size_t pixel = static_cast<size_t>(y) * camera.width() + static_cast<size_t>(x);
   if (recording != nullptr) {
     paths.camera_arrived.assign(paths.camera.size(), Color(0.f));

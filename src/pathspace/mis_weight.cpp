@@ -4,16 +4,64 @@
 
 namespace dualight {
 
+namespace {
+
+// Which guide a density follows: the radiance guide's (a camera subpath continuing) or the
+// importance guide's (a light subpath continuing).
+enum class GuideKind { Radiance, Importance };
+
+// pdf_area (path.h) where surface vertex v samples a mixture of its BSDF and a guide:
+// mixture(b, pdf_bsdf, w) is the mixture's solid-angle density of w given the BSDF's.
+template <class Mixture>
+float mixture_pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, const Mixture& mixture) {
+  const Vec3 w = direction(v, next);
+  const float pdf_w = with_bsdf(v, [&](const Bsdf& b) {
+    return mixture(b, pdf_w_world(b, v.ns, direction(v, *prev), w, TransportMode::Radiance), w);
+  });
+  return solid_angle_to_area(pdf_w, v, next);
+}
+
+}  // namespace
+
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
                const SdTree* guide) {
   if (guide == nullptr || v.type != VertexType::Surface) return pdf_area(camera, v, prev, next);
-  const Vec3 w = direction(v, next);
-  const float pdf_w = with_bsdf(v, [&](const Bsdf& b) {
-    const float pdf_bsdf = pdf_w_world(b, v.ns, direction(v, *prev), w, TransportMode::Radiance);
+  return mixture_pdf_area(v, prev, next, [&](const Bsdf& b, float pdf_bsdf, const Vec3& w) {
     const VertexGuide g = vertex_guide(guide->at(v.p), b);
     return g.active() ? g.mixture_pdf_w(pdf_bsdf, w) : pdf_bsdf;
   });
-  return solid_angle_to_area(pdf_w, v, next);
+}
+
+namespace {
+
+// pdf_area with `tree`'s guide of `kind` (null: none), from v's cached guides where
+// set_vertex_guides set them; towards_previous: next is the vertex before v on its own subpath
+// and the guide the other direction's, whose density there v caches.
+float guided_pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
+                      const SdTree* tree, GuideKind kind, bool towards_previous) {
+  if (tree == nullptr || v.type != VertexType::Surface || !v.guides_set) return pdf_area(camera, v, prev, next, tree);
+  const VertexGuide& g = kind == GuideKind::Radiance ? v.radiance_guide : v.importance_guide;
+  return mixture_pdf_area(v, prev, next, [&](const Bsdf&, float pdf_bsdf, const Vec3& w) {
+    if (!g.active()) return pdf_bsdf;
+    if (towards_previous) return g.bsdf_fraction * pdf_bsdf + (1.f - g.bsdf_fraction) * v.reverse_guide_pdf_w;
+    return g.mixture_pdf_w(pdf_bsdf, w);
+  });
+}
+
+}  // namespace
+
+void set_vertex_guides(Path& path, const SubpathGuides& guides, TransportMode mode) {
+  for (size_t k = 1; k < path.size(); ++k) {
+    Vertex& v = path[k];
+    if (v.type != VertexType::Surface) continue;
+    with_bsdf(v, [&](const Bsdf& b) {
+      if (guides.radiance != nullptr) v.radiance_guide = vertex_guide(guides.radiance->at(v.p), b);
+      if (guides.importance != nullptr) v.importance_guide = vertex_guide(guides.importance->at(v.p), b);
+    });
+    const VertexGuide& reverse = mode == TransportMode::Radiance ? v.importance_guide : v.radiance_guide;
+    if (reverse.active()) v.reverse_guide_pdf_w = reverse.directions->pdf_w(direction(v, path[k - 1]));
+    v.guides_set = true;
+  }
 }
 
 float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
@@ -30,14 +78,17 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
   // Reverse densities at the connection under this strategy.
   // The light subpath continuing through qs and pt samples the importance guide; the camera
   // subpath continuing through pt and qs the radiance guide.
-  const float pt_rev =
-      qs != nullptr ? pdf_area(camera, *qs, qs_minus, pt, importance) : pdf_light_origin(scene, pt);
+  constexpr GuideKind kImportance = GuideKind::Importance, kRadiance = GuideKind::Radiance;
+  const float pt_rev = qs != nullptr ? guided_pdf_area(camera, *qs, qs_minus, pt, importance, kImportance, false)
+                                     : pdf_light_origin(scene, pt);
   float pt_minus_rev = 0.f;
   if (pt_minus != nullptr) {
-    pt_minus_rev = qs != nullptr ? pdf_area(camera, pt, qs, *pt_minus, importance) : pdf_light(pt, *pt_minus);
+    pt_minus_rev = qs != nullptr ? guided_pdf_area(camera, pt, qs, *pt_minus, importance, kImportance, true)
+                                 : pdf_light(pt, *pt_minus);
   }
-  const float qs_rev = qs != nullptr ? pdf_area(camera, pt, pt_minus, *qs, radiance) : 0.f;
-  const float qs_minus_rev = qs_minus != nullptr ? pdf_area(camera, *qs, &pt, *qs_minus, radiance) : 0.f;
+  const float qs_rev = qs != nullptr ? guided_pdf_area(camera, pt, pt_minus, *qs, radiance, kRadiance, false) : 0.f;
+  const float qs_minus_rev =
+      qs_minus != nullptr ? guided_pdf_area(camera, *qs, &pt, *qs_minus, radiance, kRadiance, true) : 0.f;
 
   const auto remap0 = [](float pdf) { return pdf != 0.f ? pdf : 1.f; };
   const auto h = [heuristic](float r) { return heuristic == MisHeuristic::Power ? r * r : r; };

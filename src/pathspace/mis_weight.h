@@ -22,6 +22,12 @@ enum class MisHeuristic { Power, Balance };
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
                const SdTree* guide);
 
+// Caches on every surface vertex of a subpath walked with `guides` both guides at it and the
+// reverse direction's guide's density towards the previous vertex (Vertex::guides_set), as
+// mis_weight would compute them: the weights are the same, bit for bit, with fewer tree lookups.
+// `mode`: the subpath's (Radiance: a camera subpath).
+void set_vertex_guides(Path& path, const SubpathGuides& guides, TransportMode mode);
+
 float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& light, const Path& cam,
                  const Vertex& sampled, int s, int t, MisHeuristic heuristic,
                  Strategies strategies = Strategies::Mis, const SubpathGuides* guides = nullptr);

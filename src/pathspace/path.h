@@ -17,6 +17,7 @@
 #include "core/frame.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "guiding/guided_sampling.h"
 #include "materials/shading_normal.h"
 
 namespace dualight {
@@ -41,6 +42,13 @@ struct Vertex {
   // the unit direction from the scene towards it; densities of reaching it are solid-angle
   // densities, and those of leaving it planar densities on the distant disk (at_point too).
   bool at_infinity = false;
+  // Guided BDPT (set_vertex_guides, mis_weight.cpp): the radiance and importance guides at a
+  // surface vertex (VertexGuide{}: none), looked up once per subpath instead of once per
+  // strategy, and the guide of the other transport direction's density of the direction to the
+  // previous vertex. guides_set false: not cached, MIS looks the guides up.
+  bool guides_set = false;
+  VertexGuide radiance_guide, importance_guide;
+  float reverse_guide_pdf_w = 0.f;
 
   // Has a surface (a normal whose cosine enters geometry terms): not the pinhole camera, not a
   // point emitter.
