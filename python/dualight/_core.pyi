@@ -427,7 +427,7 @@ class PathTracerOptions:
         strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
-        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -455,7 +455,7 @@ class PathTracerOptions:
     @property
     def guide_keep_iterations(self) -> int:
         """
-        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:
@@ -597,7 +597,7 @@ class LightTracerOptions:
         first_sample: First sample index rendered (one task of a split render; see Film).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
-        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -625,7 +625,7 @@ class LightTracerOptions:
     @property
     def guide_keep_iterations(self) -> int:
         """
-        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:
@@ -720,7 +720,7 @@ class BdptOptions:
         strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
-        guide_keep_iterations: 'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -748,7 +748,7 @@ class BdptOptions:
     @property
     def guide_keep_iterations(self) -> int:
         """
-        'path' and 'light': the image keeps the samples of this many last training iterations (0: none), as unbiased as its own; the stats' kept_spp counts them.
+        The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
         """
     @property
     def guide_learn_bsdf_fraction(self) -> bool:

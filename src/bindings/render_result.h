@@ -152,8 +152,8 @@ void add_guiding_fields(OptionsClass<T>& o) {
              "with spp the image still has spp samples per pixel.",
              strictly_within(0.0, 1.0))
       .field("guide_keep_iterations", &GuidingOptions::guide_keep_iterations,
-             "'path' and 'light': the image keeps the samples of this many last training iterations "
-             "(0: none), as unbiased as its own; the stats' kept_spp counts them.",
+             "The image keeps the samples of this many last training iterations (0: none; BDPT with "
+             "strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.",
              up_to(0.0, 64, "(training has at most 21 iterations)"))
       .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
              "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "
