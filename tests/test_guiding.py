@@ -440,5 +440,6 @@ def test_bad_guide_from_input_is_named(
             dualight._core.guide_from_records(compiled, rows.astype(np.float32))
     with pytest.raises(ValueError, match="bsdf_fraction"):
         dualight._core.guide_from_records(compiled, good, bsdf_fraction=1.5)
-    with pytest.raises(ValueError, match="records must be an int"):
-        dualight.guiding.solution_records(cornell_solution, "radiance", records=0)
+    for bad in (0, True, 1.5, 2**24 + 1):
+        with pytest.raises(ValueError, match="records must be an int"):
+            dualight.guiding.solution_records(cornell_solution, "radiance", records=bad)

@@ -138,7 +138,11 @@ def solution_records(
         )
     if transport == "importance" and solution.I is None:
         raise ValueError("guide_from needs the importance solution: solve(..., importance=True)")
-    if not (isinstance(records, int) and 1 <= records <= 1 << 24):
+    if (
+        isinstance(records, bool)
+        or not isinstance(records, int | np.integer)
+        or not 1 <= records <= _core.MAX_GUIDE_RECORDS
+    ):
         raise ValueError(f"records must be an int in [1, 2^24], got {records!r}")
     pm = solution.patches
     indptr = np.asarray(F.indptr, dtype=np.int64)

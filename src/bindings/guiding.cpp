@@ -150,8 +150,10 @@ void def_training(py::module_& m, const char* name, const Train& train, const ch
 // A guide built from records given as rows (x, y, z, wx, wy, wz, value): value is the incident
 // quantity along the unit direction w over the density w was drawn with (guide_record.h). Every
 // leaf samples the guide with probability 1 - bsdf_fraction (nothing judges a first guide).
+// The most records guide_from_records takes (and solution_records makes: MAX_GUIDE_RECORDS).
+constexpr py::ssize_t kMaxRecords = py::ssize_t(1) << 24;
+
 Guide guide_from_records(const Scene& scene, const Rows& rows, const SdTreeSettings& settings) {
-  constexpr py::ssize_t kMaxRecords = py::ssize_t(1) << 24;
   if (rows.ndim() != 2 || rows.shape(1) != 7) throw py::value_error("records must have shape (N, 7)");
   if (rows.shape(0) < 1 || rows.shape(0) > kMaxRecords) {
     throw py::value_error("records must number 1 to 2^24, got " + std::to_string(rows.shape(0)));
@@ -221,6 +223,7 @@ void bind_guiding(py::module_& m) {
       .def_property_readonly("stats", [](const Guide& g) { return guiding_dict(g.stats); })
       .def_property_readonly("empty", [](const Guide& g) { return !g.tree; });
 
+  m.attr("MAX_GUIDE_RECORDS") = kMaxRecords;
   m.def(
       "guide_from_records",
       [](std::shared_ptr<const Scene> scene, const Rows& records, float bsdf_fraction, uint32_t spatial_threshold,
