@@ -54,10 +54,14 @@ void set_vertex_guides(Path& path, const SubpathGuides& guides, TransportMode mo
   for (size_t k = 1; k < path.size(); ++k) {
     Vertex& v = path[k];
     if (v.type != VertexType::Surface) continue;
-    with_bsdf(v, [&](const Bsdf& b) {
-      if (guides.radiance != nullptr) v.radiance_guide = vertex_guide(guides.radiance->at(v.p), b);
-      if (guides.importance != nullptr) v.importance_guide = vertex_guide(guides.importance->at(v.p), b);
-    });
+    const bool radiance = guides.radiance != nullptr && !v.radiance_guide_known;
+    const bool importance = guides.importance != nullptr && !v.importance_guide_known;
+    if (radiance || importance) {
+      with_bsdf(v, [&](const Bsdf& b) {
+        if (radiance) v.radiance_guide = vertex_guide(guides.radiance->at(v.p), b);
+        if (importance) v.importance_guide = vertex_guide(guides.importance->at(v.p), b);
+      });
+    }
     const VertexGuide& reverse = mode == TransportMode::Radiance ? v.importance_guide : v.radiance_guide;
     if (reverse.active()) v.reverse_guide_pdf_w = reverse.directions->pdf_w(direction(v, path[k - 1]));
     v.guides_set = true;

@@ -45,8 +45,10 @@ struct Vertex {
   // Guided BDPT (set_vertex_guides, mis_weight.cpp): the radiance and importance guides at a
   // surface vertex (VertexGuide{}: none), looked up once per subpath instead of once per
   // strategy, and the guide of the other transport direction's density of the direction to the
-  // previous vertex. guides_set false: not cached, MIS looks the guides up.
+  // previous vertex. guides_set false: not cached, MIS looks the guides up. The walk keeps the
+  // guides it looked up (*_known), so set_vertex_guides looks up only the others.
   bool guides_set = false;
+  bool radiance_guide_known = false, importance_guide_known = false;
   VertexGuide radiance_guide, importance_guide;
   float reverse_guide_pdf_w = 0.f;
 

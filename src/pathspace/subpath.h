@@ -49,6 +49,13 @@ inline constexpr int kNoRussianRoulette = 1 << 30;
 
 namespace subpath_detail {
 
+// Keeps on v a guide a guided walk looked up there: the radiance guide's or the importance
+// guide's (set_vertex_guides then need not look it up again).
+inline void keep_guide(Vertex& v, bool radiance, const VertexGuide& g) {
+  (radiance ? v.radiance_guide : v.importance_guide) = g;
+  (radiance ? v.radiance_guide_known : v.importance_guide_known) = true;
+}
+
 // Extends `path` from its last vertex along `ray`, which was sampled with solid-angle density
 // pdf_w; at most `max_new` vertices are added. A camera subpath (Radiance) whose ray leaves a
 // scene with an environment ends at a vertex at infinity on it (escape_vertex).
@@ -80,6 +87,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     const bool sampled = with_bsdf(cur, [&](const Bsdf& b) {
       if constexpr (kGuided) {
         const VertexGuide g = guide.tree != nullptr ? vertex_guide(guide.tree->at(cur.p), b) : VertexGuide{};
+        if (guide.tree != nullptr) keep_guide(cur, mode == TransportMode::Radiance, g);
         const float u_select = g.active() ? sampler.next_1d() : 0.f;
         if (!sample_guided(b, frame, g, wo, u_select, sampler.next_2d(), mode, bs)) return false;
       } else if (!sample(b, wo, sampler.next_2d(), mode, bs)) {
@@ -90,6 +98,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
       if constexpr (kGuided) {
         if (guide.reverse != nullptr) {
           const VertexGuide r = vertex_guide(guide.reverse->at(cur.p), b);
+          keep_guide(cur, mode != TransportMode::Radiance, r);
           if (r.active()) pdf_rev_w = r.mixture_pdf_w(pdf_rev_w, cur.wo);
         }
       }
