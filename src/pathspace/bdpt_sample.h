@@ -46,8 +46,8 @@ inline void note_arrival(Subpaths& paths, const SubpathRecording& rec, int s, in
 
 // The records of a sample whose arrivals note_arrival noted.
 inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) {
-  if (paths.camera.size() > 2) record_incident(paths.camera, paths.camera_arrived, TransportMode::Radiance, *rec.radiance);
-  if (paths.light.size() > 2) record_incident(paths.light, paths.light_arrived, TransportMode::Importance, *rec.importance);
+  record_incident(paths.camera, paths.camera_arrived, TransportMode::Radiance, *rec.radiance);
+  record_incident(paths.light, paths.light_arrived, TransportMode::Importance, *rec.importance);
 }
 
 // Every strategy (s, t) joining the two subpaths, of depth s + t - 1 within [opt.min_depth,
@@ -111,7 +111,9 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
                         if (recording != nullptr) note_arrival(paths, *recording, s, t, c, target);
                       } else {
                         L += c;
-                        if (recording != nullptr) note_arrival(paths, *recording, s, t, c, static_cast<uint32_t>(pixel));
+                        if (recording != nullptr) {
+                          note_arrival(paths, *recording, s, t, c, static_cast<uint32_t>(pixel));
+                        }
                         if (opt.strategy_images && is_finite(c)) {
                           layers->add_layer_sample(strategy_layer(s, t), pixel, c);
                         }

@@ -57,7 +57,7 @@ void trace_particle(const Scene& scene, const PinholeCamera& camera, const Light
     splats.add(pixel, c);
   }
   splats.end_path();
-  if (recording && path.size() > 2) record_incident(path, contribution, TransportMode::Importance, guiding.collector->local());
+  if (recording) record_incident(path, contribution, TransportMode::Importance, guiding.collector->local());
 }
 
 template <class Sampler>

@@ -17,9 +17,11 @@ namespace dualight {
 
 // arrived[k]: what vertex k's strategies contributed (zero where none), as seen from the
 // subpath's start. Vertex 0 (the camera, or the point on the emitter) records nothing: its
-// direction is the camera's or the emitter's, not a BSDF's.
+// direction is the camera's or the emitter's, not a BSDF's; a subpath needs three vertices to
+// record anything.
 inline void record_incident(const Path& path, const std::vector<Color>& arrived, TransportMode mode,
                             GuideRecords& out) {
+  if (path.size() < 3) return;
   Color after(0.f);  // the contributions of vertices k + 1, k + 2, ...
   for (size_t k = path.size() - 1; k-- > 1;) {
     after += arrived[k + 1];
