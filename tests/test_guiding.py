@@ -181,6 +181,39 @@ def test_guided_bdpt_stats_hold_both_guides(cornell: dualight.Scene) -> None:
     assert stats["seconds"] == pytest.approx(g["training_seconds"] + g["rendering_seconds"])
 
 
+@pytest.mark.parametrize("method", ["path", "light", "bdpt"])
+def test_a_time_limited_render_tries_whether_the_guide_pays(
+    cornell: dualight.Scene, method: str
+) -> None:
+    """Under a time limit, after training, a guided and an unguided pass of half the last
+    iteration's spp each are kept in the image and the image is rendered by the more efficient
+    (unless the passes disagree beyond their variances: then guided). The stats add up: spp and
+    seconds count training, trial and the image's own samples. trial=False, or spp alone, runs
+    no trial."""
+    image = dualight.render(cornell, method, time_limit=1.0, seed=5, progress=False, guiding=True)
+    stats, g = image.stats, image.stats["guiding"]
+    iterations = (g["radiance"] if method == "bdpt" else g)["iterations"]
+    last = 1 << (iterations - 1)
+    assert g["trial"] and g["trial_spp"] == 2 * (last // 2) and g["trial_seconds"] > 0.0
+    assert g["efficiency_ratio"] > 0.0 and g["trial_disagreement"] > 0.0
+    trusted = g["trial_disagreement"] <= 1.25
+    assert g["rendered_guided"] == (g["efficiency_ratio"] >= 1.0 or not trusted)
+    assert stats["spp"] > g["kept_spp"] + g["trial_spp"]
+    assert stats["seconds"] == pytest.approx(
+        g["training_seconds"] + g["rendering_seconds"] + g["trial_seconds"]
+    )
+    assert stats["seconds"] < 1.25
+    if method == "bdpt":
+        assert g["importance"]["trial_spp"] == g["trial_spp"]
+    off = dualight.render(
+        cornell, method, time_limit=0.3, seed=5, progress=False, guiding={"trial": False}
+    )
+    by_spp = dualight.render(cornell, method, spp=64, seed=5, progress=False, guiding=True)
+    for other in (off, by_spp):
+        assert not other.stats["guiding"]["trial"] and other.stats["guiding"]["trial_spp"] == 0
+        assert other.stats["guiding"]["rendered_guided"]
+
+
 def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
     """With the BSDF always chosen the guide draws no random number and changes no density:
     the unguided image (BDPT: its MIS weights too)."""

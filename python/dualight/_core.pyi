@@ -410,8 +410,8 @@ class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -428,6 +428,7 @@ class PathTracerOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_trial: Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -481,6 +482,11 @@ class PathTracerOptions:
     def guide_training(self) -> float:
         """
         Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guide_trial(self) -> bool:
+        """
+        Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         """
     @property
     def guiding(self) -> bool:
@@ -581,8 +587,8 @@ class LightTracerOptions:
     """
     Options of the light tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the light tracer. Keywords only: an option left out keeps its default above (the C++ LightTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -598,6 +604,7 @@ class LightTracerOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_trial: Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -651,6 +658,11 @@ class LightTracerOptions:
     def guide_training(self) -> float:
         """
         Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guide_trial(self) -> bool:
+        """
+        Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         """
     @property
     def guiding(self) -> bool:
@@ -701,8 +713,8 @@ class BdptOptions:
     """
     Options of bidirectional path tracing.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -721,6 +733,7 @@ class BdptOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
+        guide_trial: Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -774,6 +787,11 @@ class BdptOptions:
     def guide_training(self) -> float:
         """
         Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
+        """
+    @property
+    def guide_trial(self) -> bool:
+        """
+        Under a time limit, render after training a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances).
         """
     @property
     def guiding(self) -> bool:

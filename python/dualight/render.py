@@ -383,7 +383,16 @@ def render(
         (the image keeps the samples of that many last training iterations, default 2,
         which hold 3/4 of the training's; with ``strategy_images`` none; every sample is unbiased
         whatever guide drew it, so the image is their plain mean; with ``spp`` it then has
-        ``spp`` plus ``stats["guiding"]["kept_spp"]`` samples per pixel),
+        ``spp`` plus ``stats["guiding"]["kept_spp"]`` samples per pixel), ``trial`` (True:
+        under a ``time_limit``, after training, a pass guided by the trained guide and an
+        unguided pass of half the last iteration's samples per pixel each, both kept in the
+        image, measure which is more efficient, 1 / (expected relMSE x seconds), and the image
+        is rendered by that one, unless the passes disagree beyond their own variances (a
+        heavy tail one of them missed: ``trial_disagreement`` above 1.25), when it stays
+        guided; ``stats["guiding"]`` reports ``trial``, ``trial_spp``, ``trial_seconds``,
+        ``efficiency_ratio`` (guided over unguided), ``trial_disagreement`` and
+        ``rendered_guided``; with ``spp`` alone there is no trial, so the render stays a
+        function of the seed),
         ``bsdf_fraction`` (least probability of sampling the BSDF, 0.5; each spatial leaf
         learns its own from how the previous iteration's guide did on its records unless
         ``learn_bsdf_fraction=False``), ``adjoint_roulette`` (True), ``spatial_threshold``
@@ -391,7 +400,7 @@ def render(
         0.01) and ``max_records``. ``image.stats["guiding"]`` reports the iterations,
         training and rendering seconds, the trees' sizes, the BSDF fraction, the paths
         splitting added and the roulette stopped, and the kept samples; ``seconds`` includes
-        the training. :func:`dualight.train_guide` returns the guide itself, to
+        the training and the trial. :func:`dualight.train_guide` returns the guide itself, to
         draw.
     guide_from:
         With ``guiding``: a :class:`dualight.radiosity.Solution` of the same scene (with form

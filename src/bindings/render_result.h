@@ -39,6 +39,12 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["split_paths"] = g.split_paths;
   d["roulette_stops"] = g.roulette_stops;
   d["kept_spp"] = g.kept_spp;
+  d["trial"] = g.trial;
+  d["trial_spp"] = g.trial_spp;
+  d["trial_seconds"] = g.trial_seconds;
+  d["efficiency_ratio"] = g.efficiency_ratio;
+  d["trial_disagreement"] = g.trial_disagreement;
+  d["rendered_guided"] = g.rendered_guided;
   return d;
 }
 
@@ -63,6 +69,11 @@ inline py::dict stats_dict(const RenderStats& s) {
     g["kept_spp"] = s.guiding.kept_spp;
     g["radiance"] = guiding_dict(s.guiding);
     g["importance"] = guiding_dict(s.importance_guiding);
+    const py::dict radiance = g["radiance"];
+    for (const char* key : {"trial", "trial_spp", "trial_seconds", "efficiency_ratio", "trial_disagreement",
+                            "rendered_guided"}) {
+      g[key] = radiance[key];  // one trial judged both guides together
+    }
     d["guiding"] = g;
   } else if (s.guiding.used) {
     d["guiding"] = guiding_dict(s.guiding);
@@ -155,6 +166,10 @@ void add_guiding_fields(OptionsClass<T>& o) {
              "The image keeps the samples of this many last training iterations (0: none; BDPT with "
              "strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.",
              up_to(0.0, 64, "(training has at most 21 iterations)"))
+      .field("guide_trial", &GuidingOptions::guide_trial,
+             "Under a time limit, render after training a guided and an unguided pass of half the last "
+             "iteration's spp each (kept in the image), and the image with the more efficient of the two "
+             "(guided when the passes disagree beyond their variances).")
       .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
              "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "
              "guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.")

@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "film/pixel_estimate.h"
 #include "guiding/guide_training.h"
+#include "guiding/guiding_trial.h"
 #include "pathspace/bdpt_sample.h"
 #include "pathspace/mlt_importance.h"
 #include "pathspace/pixel_driver.h"
@@ -92,12 +93,24 @@ RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera,
     add_guiding_stats(r.stats, radiance, importance);
     return r;
   }
+  const auto render = [&](bool guided, const BdptOptions& o, Film& into) {
+    const SubpathGuides guides = guided ? SubpathGuides{radiance.tree.get(), importance.tree.get()} : SubpathGuides{};
+    return drive_bdpt(scene, camera, o, control, into, guides);
+  };
+  // With strategy images the passes would need layers: no trial.
+  const bool has_guide = (radiance.tree || importance.tree) && !options.strategy_images;
+  const std::optional<GuidingTrial> trial =
+      run_guiding_trial(options, options, radiance.last_stats.spp, has_guide, camera.width(), camera.height(),
+                        [&](bool guided, uint32_t spp, uint64_t seed, Film& into) {
+                          return render(guided, iteration_options(options, spp, seed), into);
+                        });
   RenderResult result{std::move(film), {}};
-  result.stats = drive_bdpt(scene, camera, after_training(options, radiance), control, result.film,
-                            {radiance.tree.get(), importance.tree.get()});
+  result.stats = render(!trial || trial->guided, after_trial(after_training(options, radiance), trial), result.film);
   add_guiding_stats(result.stats, radiance, importance);
   keep_training_samples(result.film, result.stats, radiance);
+  keep_trial(result.film, result.stats, trial);
   result.stats.importance_guiding.kept_spp = result.stats.guiding.kept_spp;
+  record_trial(result.stats.importance_guiding, trial);
   return result;
 }
 

@@ -9,6 +9,7 @@
 #include "film/pixel_estimate.h"
 #include "film/splat_list.h"
 #include "guiding/guide_training.h"
+#include "guiding/guiding_trial.h"
 #include "pathspace/mlt_importance.h"
 #include "pathspace/connect.h"
 #include "pathspace/subpath.h"
@@ -149,12 +150,20 @@ RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera
                                  RenderControl& control) {
   TrainedGuide trained = train_importance_guide(scene, camera, options, control);
   if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
-  const LightTracerOptions final_options = after_training(options, trained);
+  const auto render = [&](bool guided, const LightTracerOptions& o, Film& film) {
+    return guided ? drive_light(scene, camera, o, control, film, {{trained.tree.get()}, nullptr})
+                  : drive_light(scene, camera, o, control, film, {});
+  };
+  const std::optional<GuidingTrial> trial =
+      run_guiding_trial(options, options, trained.last_stats.spp, trained.tree != nullptr, camera.width(),
+                        camera.height(), [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+                          return render(guided, iteration_options(options, spp, seed), film);
+                        });
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  result.stats = drive_light(scene, camera, final_options, control, result.film,
-                             {{trained.tree.get()}, nullptr});
+  result.stats = render(!trial || trial->guided, after_trial(after_training(options, trained), trial), result.film);
   add_guiding_stats(result.stats, trained);
   keep_training_samples(result.film, result.stats, trained);
+  keep_trial(result.film, result.stats, trial);
   return result;
 }
 

@@ -10,6 +10,7 @@
 #include "film/pixel_estimate.h"
 #include "guiding/adjoint_rr.h"
 #include "guiding/guide_training.h"
+#include "guiding/guiding_trial.h"
 #include "guiding/guided_sampling.h"
 #include "materials/shading_normal.h"
 #include "pathspace/pixel_driver.h"
@@ -320,16 +321,25 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
                                 RenderControl& control) {
   TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
   if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
-  const PathTracerOptions final_options = after_training(options, trained);
-  RenderResult result{Film(camera.width(), camera.height()), {}};
   const std::vector<float> estimates = options.guide_adjoint_roulette && trained.last_image
                                            ? pixel_estimates(film_luminance(*trained.last_image), camera)
                                            : std::vector<float>();
-  result.stats =
-      drive_path(scene, camera, final_options, control, result.film, {trained.tree.get()}, nullptr, &estimates);
+  const auto render = [&](bool guided, const PathTracerOptions& o, Film& film) {
+    return guided ? drive_path(scene, camera, o, control, film, {trained.tree.get()}, nullptr, &estimates)
+                  : drive_path(scene, camera, o, control, film, {});
+  };
+  const std::optional<GuidingTrial> trial =
+      run_guiding_trial(options, options, trained.last_stats.spp, trained.tree != nullptr, camera.width(),
+                        camera.height(), [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+                          return render(guided, iteration_options(options, spp, seed), film);
+                        });
+  const bool guided = !trial || trial->guided;
+  RenderResult result{Film(camera.width(), camera.height()), {}};
+  result.stats = render(guided, after_trial(after_training(options, trained), trial), result.film);
   add_guiding_stats(result.stats, trained);
   keep_training_samples(result.film, result.stats, trained);
-  result.stats.guiding.adjoint_roulette = !estimates.empty();
+  keep_trial(result.film, result.stats, trial);
+  result.stats.guiding.adjoint_roulette = guided && !estimates.empty();
   result.stats.guiding.split_paths = result.stats.split_paths;
   result.stats.guiding.roulette_stops = result.stats.roulette_stops;
   return result;

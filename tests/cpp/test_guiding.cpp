@@ -1,6 +1,7 @@
 // The SD-tree guide (guiding/): the quadtree's density integrates to one and is the density of
 // its samples; a tree is the same whatever order its records come in; the BSDF fraction is
-// learnt only from enough records; adjoint-driven roulette keeps the expectation.
+// learnt only from enough records; adjoint-driven roulette keeps the expectation; the trial after
+// training picks the more efficient of a guided and an unguided pass, unless they disagree.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "check.h"
 #include "core/rng.h"
 #include "guiding/adjoint_rr.h"
+#include "guiding/guiding_trial.h"
 #include "guiding/sd_tree.h"
 #include "lobe_records.h"
 
@@ -163,4 +165,88 @@ TEST_CASE("adjoint_roulette_keeps_the_expectation_and_its_bounds") {
   }
   const RouletteOrSplit low = adjoint_roulette(0.01f, 0.5f, 1.f, 1, 0.f, s);
   CHECK(low.scale == doctest::Approx(1.f / s.min_survival));
+}
+
+// A pass of a synthetic estimator: every pixel's samples are 1 + sigma * (a standard normal), and
+// the pass "took" seconds_per_sample per sample.
+static RenderStats synthetic_pass(Film& film, uint32_t spp, uint64_t seed, double sigma, double seconds_per_sample) {
+  Pcg32 rng(seed, 7);
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    for (uint32_t k = 0; k < spp; ++k) {
+      // Box-Muller: a standard normal from two uniforms.
+      const double u1 = std::max(1e-12, static_cast<double>(rng.next_float())), u2 = rng.next_float();
+      const float v = static_cast<float>(1.0 + sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307 * u2));
+      film.add_sample(p, Color(v, v, v));
+    }
+    film.end_block(p);
+  }
+  RenderStats s;
+  s.spp = spp;
+  s.samples = spp * film.pixel_count();
+  s.seconds = seconds_per_sample * static_cast<double>(s.samples);
+  return s;
+}
+
+// A pass whose samples are 1 / p with probability p and else 0 (mean 1, variance 1 / p - 1): at
+// a few samples per pixel most pixels see none of the rare ones, and its variance looks small.
+static RenderStats heavy_tailed_pass(Film& film, uint32_t spp, uint64_t seed, double p) {
+  Pcg32 rng(seed, 11);
+  for (size_t i = 0; i < film.pixel_count(); ++i) {
+    for (uint32_t k = 0; k < spp; ++k) {
+      const float v = rng.next_float() < p ? static_cast<float>(1.0 / p) : 0.f;
+      film.add_sample(i, Color(v, v, v));
+    }
+    film.end_block(i);
+  }
+  RenderStats s;
+  s.spp = spp;
+  s.samples = spp * film.pixel_count();
+  s.seconds = static_cast<double>(s.samples);
+  return s;
+}
+
+TEST_CASE("guiding_trial_picks_the_pass_of_least_variance_times_time") {
+  EstimatorOptions est;
+  est.spp = 0;
+  est.time_limit = 1.0;
+  GuidingOptions g;
+  // Efficiency is 1 / (variance x time): guided 1 / (0.25 x 2) = 2, unguided 1 / (1 x 1) = 1.
+  const auto run = [&](double sigma_guided, double cost_guided) {
+    return run_guiding_trial(est, g, 64, true, 16, 16, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+      return guided ? synthetic_pass(film, spp, seed, sigma_guided, cost_guided) : synthetic_pass(film, spp, seed, 1.0, 1.0);
+    });
+  };
+  const std::optional<GuidingTrial> pays = run(0.5, 2.0);
+  REQUIRE(pays);
+  CHECK(pays->spp == 64);
+  CHECK(pays->films.size() == 2);
+  CHECK(pays->efficiency_ratio == doctest::Approx(2.0).epsilon(0.1));
+  CHECK(pays->guided);
+  // The control: the same variance at 6x the time is a third as efficient, and loses.
+  const std::optional<GuidingTrial> loses = run(0.5, 6.0);
+  REQUIRE(loses);
+  CHECK(loses->efficiency_ratio == doctest::Approx(2.0 / 3.0).epsilon(0.1));
+  CHECK(!loses->guided);
+  CHECK(pays->disagreement == doctest::Approx(1.0).epsilon(0.1));
+  CHECK(loses->disagreement == doctest::Approx(1.0).epsilon(0.1));
+  // An unguided pass that misses a heavy tail measures itself as more efficient than a guided pass
+  // at 20x the time (its true variance is 4000x the guided one's); the passes disagree far beyond
+  // their variances, so the measurement is not trusted and the image stays guided.
+  const std::optional<GuidingTrial> tail =
+      run_guiding_trial(est, g, 64, true, 16, 16, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+        return guided ? synthetic_pass(film, spp, seed, 0.5, 20.0) : heavy_tailed_pass(film, spp, seed, 1e-3);
+      });
+  REQUIRE(tail);
+  CHECK(tail->efficiency_ratio < 1.0);
+  CHECK(tail->disagreement > 10.0);
+  CHECK(tail->guided);
+  // No trial without a time limit (the render would depend on measured seconds), with too few
+  // samples per pass, or when turned off.
+  est.time_limit = 0.0;
+  est.spp = 1024;
+  CHECK(!run(0.5, 2.0));
+  est.time_limit = 1.0;
+  CHECK(!run_guiding_trial(est, g, 7, true, 16, 16, [](bool, uint32_t, uint64_t, Film&) { return RenderStats{}; }));
+  g.guide_trial = false;
+  CHECK(!run(0.5, 2.0));
 }

@@ -1,0 +1,148 @@
+// Whether a trained guide pays for itself, measured before the image is rendered with it. A
+// guide can lower an estimator's variance per sample by less than it raises the cost per sample
+// (BDPT, whose light subpaths already find what the radiance guide would, pays about 1.3x per
+// sample for no gain on the scenes measured in issue 22). Under a time limit the render then
+// tries both: a pass guided by the trained guide and an unguided pass, of the same samples per
+// pixel and each on its own seed, rendered exactly as the image would be. Each pass's efficiency is
+// 1 / (expected relMSE of its mean x its seconds), both independent of its sample count, the
+// relMSE of pbrt-v4's imgtool (metrics.relmse) with each pixel's variance of the mean in place
+// of the squared error and the two passes' mean in place of the reference. The image is then
+// rendered by the more efficient one. Both passes are unbiased estimates of the same image, so
+// the image keeps their samples (its plain mean, as with the kept training iterations).
+// Only under a time limit: with spp alone a render is a function of its seed, which a decision
+// by measured seconds would break.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/rng.h"
+#include "film/film.h"
+#include "guiding/guiding_options.h"
+#include "pathspace/estimator_options.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+// The expected relMSE of a film's mean against a reference image (H x W x 3): the mean over pixels
+// and channels of its variance of the mean over (reference + eps)^2, eps 1 % of the reference's
+// mean (metrics.relmse's 0.01 made independent of the scene's scale).
+inline double expected_relmse(const Film& film, const std::vector<float>& reference) {
+  const std::vector<float> variance = film.variance_of_mean();
+  double level = 0.0;
+  for (const float v : reference) level += std::max(0.f, v);
+  const double eps = std::max(1e-2 * level / static_cast<double>(std::max<size_t>(reference.size(), 1)), 1e-30);
+  double sum = 0.0;
+  for (size_t i = 0; i < variance.size(); ++i) {
+    const double y = std::max(0.f, reference[i]) + eps;
+    sum += variance[i] / (y * y);
+  }
+  return sum / static_cast<double>(std::max<size_t>(variance.size(), 1));
+}
+
+// How far two unbiased passes of the same image disagree beyond their own variances: the mean
+// over pixels and channels of (a - b)^2 / (var a + var b), about 1 when each pass's variance of
+// the mean is right. Far above 1, a pass underestimates its variance: its samples have missed
+// the rare, bright paths (a heavy tail), and its measured relMSE would flatter it.
+inline double pass_disagreement(const Film& a, const Film& b) {
+  const std::vector<float> ma = a.mean(), mb = b.mean(), va = a.variance_of_mean(), vb = b.variance_of_mean();
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < ma.size(); ++i) {
+    const double v = static_cast<double>(va[i]) + vb[i];
+    if (!(v > 0.0)) continue;
+    const double d = static_cast<double>(ma[i]) - mb[i];
+    sum += d * d / v;
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 1.0;
+}
+
+// Above this disagreement the trial's measurement is not trusted and the image stays guided, as it
+// is without a trial (measured in issue 22: 0.98-1.09 on the Cornell box, the caustic box,
+// rooms(10) and the door with BDPT and the light tracer; 1.46 for path tracing on the door, whose
+// unguided pass misses most of the light through the door's gap).
+constexpr double kTrialDisagreementLimit = 1.25;
+
+struct GuidingTrial {
+  bool guided = true;             // the image is rendered guided
+  bool interrupted = false;       // cancelled during a pass: the passes so far are kept, nothing judged
+  double efficiency_ratio = 0.0;  // guided over unguided, as measured (0: not judged)
+  double disagreement = 0.0;      // pass_disagreement of the two passes (0: not judged)
+  uint32_t spp = 0;               // of both passes together
+  double seconds = 0.0;
+  uint64_t samples = 0, rays = 0;
+  std::vector<FilmAccumulators> films;  // the passes rendered, guided first
+};
+
+// Runs the trial when it applies (a time limit, a guide, guide_trial, and at least 4 samples
+// per pixel per pass: the last training iteration's spp, split in two; with spp too, the image
+// must have samples left). render(guided, spp, seed, film) renders one pass and returns its stats.
+template <class RenderPass>
+std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const GuidingOptions& g,
+                                              uint32_t last_iteration_spp, bool has_guide, int width, int height,
+                                              const RenderPass& render) {
+  const uint32_t pass_spp = last_iteration_spp / 2;
+  if (!g.guide_trial || !has_guide || est.time_limit <= 0.0 || pass_spp < 4) return std::nullopt;
+  if (est.spp > 0 && 2ull * pass_spp >= est.spp) return std::nullopt;
+  GuidingTrial trial;
+  std::vector<Film> films;
+  double seconds[2] = {0.0, 0.0};
+  for (int k = 0; k < 2 && !trial.interrupted; ++k) {
+    films.emplace_back(width, height);
+    const RenderStats s = render(k == 0, pass_spp, hash_combine(est.seed, 0x747269616cull + k), films.back());
+    seconds[k] = s.seconds;
+    trial.seconds += s.seconds;
+    trial.samples += s.samples;
+    trial.rays += s.rays;
+    trial.spp += s.spp;
+    trial.interrupted = s.interrupted;
+    trial.films.push_back(films.back().accumulators());
+  }
+  if (trial.interrupted) return trial;
+  std::vector<float> reference = films[0].mean();
+  const std::vector<float> other = films[1].mean();
+  for (size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (reference[i] + other[i]);
+  const double cost_guided = expected_relmse(films[0], reference) * seconds[0];
+  const double cost_plain = expected_relmse(films[1], reference) * seconds[1];
+  trial.efficiency_ratio = cost_guided > 0.0 ? cost_plain / cost_guided : 1.0;
+  trial.disagreement = pass_disagreement(films[0], films[1]);
+  trial.guided = !(trial.efficiency_ratio < 1.0) || !(trial.disagreement <= kTrialDisagreementLimit);
+  return trial;
+}
+
+// The image's options after a trial: its time and samples per pixel off the budget.
+template <class Options>
+Options after_trial(Options o, const std::optional<GuidingTrial>& trial) {
+  if (!trial) return o;
+  if (o.time_limit > 0.0) o.time_limit = std::max(1e-3, o.time_limit - trial->seconds);
+  if (o.spp > 0) o.spp -= std::min(o.spp, trial->spp);
+  return o;
+}
+
+// Reports a trial in a guide's stats.
+inline void record_trial(GuidingStats& g, const std::optional<GuidingTrial>& trial) {
+  if (!trial) return;
+  g.trial = true;
+  g.trial_spp = trial->spp;
+  g.trial_seconds = trial->seconds;
+  g.efficiency_ratio = trial->efficiency_ratio;
+  g.trial_disagreement = trial->disagreement;
+  g.rendered_guided = trial->guided;
+}
+
+// Adds a trial's passes to the image's film and stats (after add_guiding_stats), as
+// keep_training_samples does the training's.
+inline void keep_trial(Film& film, RenderStats& stats, const std::optional<GuidingTrial>& trial) {
+  if (!trial) return;
+  for (const FilmAccumulators& a : trial->films) film.add_accumulators(a);
+  stats.samples += trial->samples;
+  stats.rays += trial->rays;
+  stats.spp += trial->spp;
+  stats.seconds += trial->seconds;
+  stats.interrupted = stats.interrupted || trial->interrupted;
+  record_trial(stats.guiding, trial);
+}
+
+}  // namespace dualight
