@@ -384,12 +384,14 @@ def render(
         which hold 3/4 of the training's; with ``strategy_images`` none; every sample is unbiased
         whatever guide drew it, so the image is their plain mean; with ``spp`` it then has
         ``spp`` plus ``stats["guiding"]["kept_spp"]`` samples per pixel), ``trial`` (True:
-        under a ``time_limit``, after training, a pass guided by the trained guide and an
-        unguided pass of half the last iteration's samples per pixel each, both kept in the
-        image, measure which is more efficient, 1 / (expected relMSE x seconds), and the image
-        is rendered by that one, unless the passes disagree beyond their own variances (a
-        heavy tail one of them missed: ``trial_disagreement`` above 1.25), when it stays
-        guided; ``stats["guiding"]`` reports ``trial``, ``trial_spp``, ``trial_seconds``,
+        under a ``time_limit``, before the training iteration predicted to be the last (or
+        after the training), a pass guided by the guide so far and an unguided pass of half
+        the last iteration's samples per pixel each (at least 32), both kept in the image,
+        measure which is more efficient, 1 / (expected relMSE x seconds), and the image is
+        rendered by that one (unguided stops the training there: ``stopped_by_trial``),
+        unless the passes disagree beyond their own variances (a heavy tail one of them
+        missed: ``trial_disagreement`` above 1.15), when it stays guided;
+        ``stats["guiding"]`` reports ``trial``, ``trial_spp``, ``trial_seconds``,
         ``efficiency_ratio`` (guided over unguided), ``trial_disagreement`` and
         ``rendered_guided``; with ``spp`` alone there is no trial, so the render stays a
         function of the seed),

@@ -34,6 +34,7 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["bsdf_fraction_min"] = g.bsdf_fraction_min;
   d["bsdf_fraction_max"] = g.bsdf_fraction_max;
   d["stopped_by_records"] = g.stopped_by_records;
+  d["stopped_by_trial"] = g.stopped_by_trial;
   d["seeded"] = g.seeded;
   d["adjoint_roulette"] = g.adjoint_roulette;
   d["split_paths"] = g.split_paths;
@@ -167,9 +168,10 @@ void add_guiding_fields(OptionsClass<T>& o) {
              "strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.",
              up_to(0.0, 64, "(training has at most 21 iterations)"))
       .field("guide_trial", &GuidingOptions::guide_trial,
-             "Under a time limit, render after training a guided and an unguided pass of half the last "
-             "iteration's spp each (kept in the image), and the image with the more efficient of the two "
-             "(guided when the passes disagree beyond their variances).")
+             "Under a time limit, render before the last training iteration (or after training) a guided and "
+             "an unguided pass of half the last iteration's spp each (kept in the image), and the image with "
+             "the more efficient of the two (guided when the passes disagree beyond their variances; "
+             "unguided stops the training).")
       .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
              "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "
              "guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.")

@@ -3,6 +3,9 @@
 // its paths carried; the records build iteration k's tree. Training ends when its share of the
 // budget would be exceeded (samples per pixel, or time assuming each iteration takes twice the
 // last), or before an iteration would store more than guide_max_records, or on cancellation.
+// Under a time limit a checkpoint (the guiding trial, guiding_trial.h) may look at the guides
+// before the iteration predicted to be the last, and stop the training there: when the guide
+// does not pay, that iteration, the training's most costly, is not spent.
 // With spp the iterations and the tree are a function of the seed alone, whatever the threads.
 #pragma once
 #include <algorithm>
@@ -10,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -66,6 +70,19 @@ struct TrainedGuide {
   std::deque<Kept> kept;
 };
 
+// Looks at N guides during training; true stops the training (its time does not count in the
+// training's).
+template <size_t N>
+using TrainingCheckpoint = std::function<bool(const std::array<TrainedGuide, N>&)>;
+
+// Whether the checkpoint is due after an iteration that took last_seconds, the training having
+// spent `spent` of its time_budget: the next iteration is predicted (taking twice the last) to be
+// the last that fits.
+inline bool checkpoint_due(double spent, double last_seconds, double time_budget) {
+  if (time_budget <= 0.0) return false;
+  return spent + 2.0 * last_seconds <= time_budget && spent + 6.0 * last_seconds > time_budget;
+}
+
 // The scene's box, grown a little so every vertex falls inside.
 inline void guide_bounds(const Scene& scene, Vec3& lo, Vec3& hi) {
   const Vec3 pad = (scene.bounds_max() - scene.bounds_min()) * 1e-3f + Vec3(1e-4f);
@@ -99,17 +116,21 @@ inline void finish_guide_stats(TrainedGuide& out, double seconds) {
 // null) and recording guide i's records into collectors[i], and returns its stats. `start` (each
 // may be null) guides the first iteration. The iterations' images, kept samples and rays are the
 // first guide's (guide_training.h's TrainedGuide); every guide has the training's counts and time.
+// `checkpoint` (may be null) is called at most once, when checkpoint_due.
 template <size_t N, class RunIteration>
 std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g,
                                          int width, int height, RenderControl& control,
-                                         std::array<std::shared_ptr<const SdTree>, N> start, const RunIteration& run) {
+                                         std::array<std::shared_ptr<const SdTree>, N> start, const RunIteration& run,
+                                         const TrainingCheckpoint<N>* checkpoint = nullptr) {
   std::array<TrainedGuide, N> out;
   for (size_t i = 0; i < N; ++i) {
     out[i].stats.seeded = start[i] != nullptr;
     out[i].tree = std::move(start[i]);
   }
   TrainedGuide& first = out[0];
-  const Stopwatch elapsed;
+  const Stopwatch clock;
+  double paused = 0.0;  // in the checkpoint
+  const auto elapsed = [&] { return clock() - paused; };
   const double spp_budget = est.spp > 0 ? std::floor(g.guide_training * est.spp) : 0.0;
   const double time_budget = est.time_limit > 0.0 ? g.guide_training * est.time_limit : 0.0;
   Vec3 lo, hi;
@@ -151,6 +172,16 @@ std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOpti
       out[i].stats.records = records.size();
     }
     last_seconds = elapsed() - start_time;
+    if (checkpoint != nullptr && *checkpoint && checkpoint_due(elapsed(), last_seconds, time_budget)) {
+      const Stopwatch looking;
+      const bool stop = (*checkpoint)(out);
+      paused += looking();
+      checkpoint = nullptr;
+      if (stop) {
+        for (TrainedGuide& t : out) t.stats.stopped_by_trial = true;
+        break;
+      }
+    }
   }
   const double seconds = elapsed();
   for (TrainedGuide& t : out) finish_guide_stats(t, seconds);
@@ -161,12 +192,13 @@ std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOpti
 template <class RunIteration>
 TrainedGuide train_guide(const Scene& scene, const EstimatorOptions& est, const GuidingOptions& g, int width,
                          int height, RenderControl& control, std::shared_ptr<const SdTree> start,
-                         const RunIteration& run) {
+                         const RunIteration& run, const TrainingCheckpoint<1>* checkpoint = nullptr) {
   auto trained = train_guides<1>(
       scene, est, g, width, height, control, {std::move(start)},
       [&](uint32_t spp, uint64_t seed, const std::array<const SdTree*, 1>& trees,
           std::array<RecordCollector, 1>& collectors,
-          Film& film) { return run(spp, seed, trees[0], collectors[0], film); });
+          Film& film) { return run(spp, seed, trees[0], collectors[0], film); },
+      checkpoint);
   return std::move(trained[0]);
 }
 

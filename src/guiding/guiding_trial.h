@@ -8,7 +8,10 @@
 // relMSE of pbrt-v4's imgtool (metrics.relmse) with each pixel's variance of the mean in place
 // of the squared error and the two passes' mean in place of the reference. The image is then
 // rendered by the more efficient one. Both passes are unbiased estimates of the same image, so
-// the image keeps their samples (its plain mean, as with the kept training iterations).
+// the image keeps their samples (its plain mean, as with the kept training iterations). The
+// trial runs during the training, before the iteration predicted to be its last (the most
+// costly: train_guides's checkpoint), with the guide so far; unguided wins stop the training
+// there. When no iteration was predicted to be the last, it runs after the training.
 // Only under a time limit: with spp alone a render is a function of its seed, which a decision
 // by measured seconds would break.
 #pragma once
@@ -41,11 +44,13 @@ inline double expected_relmse(const Film& film, const std::vector<float>& refere
   return sum / static_cast<double>(std::max<size_t>(variance.size(), 1));
 }
 
-// How far two unbiased passes of the same image disagree beyond their own variances: the mean
-// over pixels and channels of (a - b)^2 / (var a + var b), about 1 when each pass's variance of
-// the mean is right. Far above 1, a pass underestimates its variance: its samples have missed
-// the rare, bright paths (a heavy tail), and its measured relMSE would flatter it.
-inline double pass_disagreement(const Film& a, const Film& b) {
+// How far two unbiased passes of the same image, of n samples per pixel each, disagree beyond
+// their own variances: the mean over pixels and channels of t^2 = (a - b)^2 / (var a + var b),
+// over its expectation nu / (nu - 2) when the samples are normal (Student's t of Welch's nu =
+// 2 (n - 1) degrees of freedom): about 1 when each pass's variance of the mean is right. Well
+// above 1, a pass underestimates its variance: its samples have missed the rare, bright paths
+// (a heavy tail), and its measured relMSE would flatter it.
+inline double pass_disagreement(const Film& a, const Film& b, uint32_t n) {
   const std::vector<float> ma = a.mean(), mb = b.mean(), va = a.variance_of_mean(), vb = b.variance_of_mean();
   double sum = 0.0;
   size_t count = 0;
@@ -56,14 +61,19 @@ inline double pass_disagreement(const Film& a, const Film& b) {
     sum += d * d / v;
     ++count;
   }
-  return count > 0 ? sum / static_cast<double>(count) : 1.0;
+  const double nu = 2.0 * (std::max(n, 3u) - 1.0);
+  return count > 0 ? sum / static_cast<double>(count) / (nu / (nu - 2.0)) : 1.0;
 }
 
 // Above this disagreement the trial's measurement is not trusted and the image stays guided, as it
-// is without a trial (measured in issue 22: 0.98-1.09 on the Cornell box, the caustic box,
-// rooms(10) and the door with BDPT and the light tracer; 1.46 for path tracing on the door, whose
-// unguided pass misses most of the light through the door's gap).
-constexpr double kTrialDisagreementLimit = 1.25;
+// is without a trial. Measured in issue 22 (passes of 32 to 128 spp): 0.96-1.09 on the Cornell
+// box, the caustic box, rooms(10) and the door with BDPT and the light tracer, and path tracing
+// but on the door, where the unguided pass misses most of the light through the door's gap:
+// 1.23-1.26 with passes of 32 spp, 1.44 with 64 (1.09 with 16: too few samples to tell).
+constexpr double kTrialDisagreementLimit = 1.15;
+// Fewer samples per pixel per pass cannot tell a heavy tail (the door's path tracer above): no
+// trial, and the image stays guided.
+constexpr uint32_t kTrialMinPassSpp = 32;
 
 struct GuidingTrial {
   bool guided = true;             // the image is rendered guided
@@ -76,15 +86,20 @@ struct GuidingTrial {
   std::vector<FilmAccumulators> films;  // the passes rendered, guided first
 };
 
-// Runs the trial when it applies (a time limit, a guide, guide_trial, and at least 4 samples
-// per pixel per pass: the last training iteration's spp, split in two; with spp too, the image
-// must have samples left). render(guided, spp, seed, film) renders one pass and returns its stats.
+// The samples per pixel of each of the trial's passes: half the last training iteration's, so
+// the trial costs about as much as that iteration. Before the last iteration (during the
+// training) that is the spp of the iteration before it.
+inline uint32_t trial_pass_spp(uint32_t last_iteration_spp, bool during_training) {
+  return during_training ? last_iteration_spp : last_iteration_spp / 2;
+}
+
+// Runs the trial when it applies (a time limit, a guide, guide_trial, and kTrialMinPassSpp samples
+// per pixel per pass; with spp too, the image must have samples left). render(guided, spp, seed,
+// film) renders one pass and returns its stats.
 template <class RenderPass>
-std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const GuidingOptions& g,
-                                              uint32_t last_iteration_spp, bool has_guide, int width, int height,
-                                              const RenderPass& render) {
-  const uint32_t pass_spp = last_iteration_spp / 2;
-  if (!g.guide_trial || !has_guide || est.time_limit <= 0.0 || pass_spp < 4) return std::nullopt;
+std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const GuidingOptions& g, uint32_t pass_spp,
+                                              bool has_guide, int width, int height, const RenderPass& render) {
+  if (!g.guide_trial || !has_guide || est.time_limit <= 0.0 || pass_spp < kTrialMinPassSpp) return std::nullopt;
   if (est.spp > 0 && 2ull * pass_spp >= est.spp) return std::nullopt;
   GuidingTrial trial;
   std::vector<Film> films;
@@ -107,7 +122,7 @@ std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const
   const double cost_guided = expected_relmse(films[0], reference) * seconds[0];
   const double cost_plain = expected_relmse(films[1], reference) * seconds[1];
   trial.efficiency_ratio = cost_guided > 0.0 ? cost_plain / cost_guided : 1.0;
-  trial.disagreement = pass_disagreement(films[0], films[1]);
+  trial.disagreement = pass_disagreement(films[0], films[1], pass_spp);
   trial.guided = !(trial.efficiency_ratio < 1.0) || !(trial.disagreement <= kTrialDisagreementLimit);
   return trial;
 }

@@ -64,7 +64,8 @@ RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const Bd
 // not find what light subpaths already bring in. The iterations render no strategy images; with
 // them the image keeps no iteration's samples.
 std::array<TrainedGuide, 2> train_bdpt_guides(const Scene& scene, const PinholeCamera& camera,
-                                              const BdptOptions& options, RenderControl& control) {
+                                              const BdptOptions& options, RenderControl& control,
+                                              const TrainingCheckpoint<2>* checkpoint) {
   GuidingOptions g = options;
   if (options.strategy_images) g.guide_keep_iterations = 0;
   PixelImportance pixel_weight;  // uniform until an iteration's image is there
@@ -79,33 +80,46 @@ std::array<TrainedGuide, 2> train_bdpt_guides(const Scene& scene, const PinholeC
         const RenderStats s = drive_bdpt(scene, camera, o, control, film, {trees[0], trees[1]}, &training);
         pixel_weight = PixelImportance(film_luminance(film), camera.width(), camera.height(), 2, 0.01);
         return s;
-      });
+      },
+      checkpoint);
 }
 
-// Trains both guides, renders the image with them, and adds the training's stats and kept
-// samples. Interrupted during training, the last finished training iteration's image is returned.
+// Trains both guides, tries whether they pay (guiding_trial.h: during the training, which it may
+// stop, or after it), renders the image guided or not, and adds the training's and the trial's
+// stats and samples. Interrupted during training, the last finished training iteration's image
+// is returned.
 RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
                                 RenderControl& control, Film film) {
-  std::array<TrainedGuide, 2> trained = train_bdpt_guides(scene, camera, options, control);
+  const auto render = [&](const std::array<TrainedGuide, 2>* guided, const BdptOptions& o, Film& into) {
+    const SubpathGuides guides = guided ? SubpathGuides{(*guided)[0].tree.get(), (*guided)[1].tree.get()}
+                                        : SubpathGuides{};
+    return drive_bdpt(scene, camera, o, control, into, guides);
+  };
+  std::optional<GuidingTrial> trial;
+  const auto try_guides = [&](const std::array<TrainedGuide, 2>& t, bool during_training) {
+    // With strategy images the passes would need layers: no trial.
+    const bool has_guide = (t[0].tree || t[1].tree) && !options.strategy_images;
+    const uint32_t pass_spp = trial_pass_spp(t[0].last_stats.spp, during_training);
+    trial = run_guiding_trial(options, options, pass_spp, has_guide, camera.width(), camera.height(),
+                              [&](bool guided, uint32_t spp, uint64_t seed, Film& into) {
+                                return render(guided ? &t : nullptr, iteration_options(options, spp, seed), into);
+                              });
+    return trial && !trial->guided;
+  };
+  const TrainingCheckpoint<2> checkpoint = [&](const std::array<TrainedGuide, 2>& t) {
+    return try_guides(t, true);
+  };
+  std::array<TrainedGuide, 2> trained = train_bdpt_guides(scene, camera, options, control, &checkpoint);
   TrainedGuide &radiance = trained[0], &importance = trained[1];
   if (control.cancelled()) {
     RenderResult r = last_training_image(radiance, camera.width(), camera.height());
     add_guiding_stats(r.stats, radiance, importance);
     return r;
   }
-  const auto render = [&](bool guided, const BdptOptions& o, Film& into) {
-    const SubpathGuides guides = guided ? SubpathGuides{radiance.tree.get(), importance.tree.get()} : SubpathGuides{};
-    return drive_bdpt(scene, camera, o, control, into, guides);
-  };
-  // With strategy images the passes would need layers: no trial.
-  const bool has_guide = (radiance.tree || importance.tree) && !options.strategy_images;
-  const std::optional<GuidingTrial> trial =
-      run_guiding_trial(options, options, radiance.last_stats.spp, has_guide, camera.width(), camera.height(),
-                        [&](bool guided, uint32_t spp, uint64_t seed, Film& into) {
-                          return render(guided, iteration_options(options, spp, seed), into);
-                        });
+  if (!trial) try_guides(trained, false);
   RenderResult result{std::move(film), {}};
-  result.stats = render(!trial || trial->guided, after_trial(after_training(options, radiance), trial), result.film);
+  result.stats = render(!trial || trial->guided ? &trained : nullptr,
+                        after_trial(after_training(options, radiance), trial), result.film);
   add_guiding_stats(result.stats, radiance, importance);
   keep_training_samples(result.film, result.stats, radiance);
   keep_trial(result.film, result.stats, trial);

@@ -145,22 +145,49 @@ RenderStats drive_light(const Scene& scene, const PinholeCamera& camera, const L
   });
 }
 
-// Renders the image with the guide of `trained`, then adds the training's stats and kept samples.
+// The importance guide's training; `checkpoint` as train_guides's.
+TrainedGuide train_importance_guide_with(const Scene& scene, const PinholeCamera& camera,
+                                         const LightTracerOptions& options, RenderControl& control,
+                                         const TrainingCheckpoint<1>* checkpoint) {
+  PixelImportance pixel_weight;  // uniform until an iteration's image is there
+  return train_guide(
+      scene, options, options, camera.width(), camera.height(), control, options.guide_start_importance,
+      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
+        const LightTracerOptions o = iteration_options(options, spp, seed);
+        const RenderStats s = drive_light(scene, camera, o, control, film, {{tree}, &collector, &pixel_weight});
+        pixel_weight = PixelImportance(film_luminance(film), camera.width(), camera.height(), 2, 0.01);
+        return s;
+      },
+      checkpoint);
+}
+
+// Trains the importance guide, tries whether it pays (guiding_trial.h: during the training, which
+// it may stop, or after it), renders the image guided or not, and adds the training's and the
+// trial's stats and samples.
 RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,
                                  RenderControl& control) {
-  TrainedGuide trained = train_importance_guide(scene, camera, options, control);
-  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
-  const auto render = [&](bool guided, const LightTracerOptions& o, Film& film) {
-    return guided ? drive_light(scene, camera, o, control, film, {{trained.tree.get()}, nullptr})
-                  : drive_light(scene, camera, o, control, film, {});
+  const auto render = [&](const SdTree* guide, const LightTracerOptions& o, Film& film) {
+    return drive_light(scene, camera, o, control, film, {{guide}, nullptr});
   };
-  const std::optional<GuidingTrial> trial =
-      run_guiding_trial(options, options, trained.last_stats.spp, trained.tree != nullptr, camera.width(),
-                        camera.height(), [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
-                          return render(guided, iteration_options(options, spp, seed), film);
-                        });
+  std::optional<GuidingTrial> trial;
+  const auto try_guide = [&](const TrainedGuide& t, bool during_training) {
+    const uint32_t pass_spp = trial_pass_spp(t.last_stats.spp, during_training);
+    trial = run_guiding_trial(options, options, pass_spp, t.tree != nullptr, camera.width(), camera.height(),
+                              [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+                                return render(guided ? t.tree.get() : nullptr, iteration_options(options, spp, seed),
+                                              film);
+                              });
+    return trial && !trial->guided;
+  };
+  const TrainingCheckpoint<1> checkpoint = [&](const std::array<TrainedGuide, 1>& t) {
+    return try_guide(t[0], true);
+  };
+  TrainedGuide trained = train_importance_guide_with(scene, camera, options, control, &checkpoint);
+  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
+  if (!trial) try_guide(trained, false);
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  result.stats = render(!trial || trial->guided, after_trial(after_training(options, trained), trial), result.film);
+  result.stats = render(!trial || trial->guided ? trained.tree.get() : nullptr,
+                        after_trial(after_training(options, trained), trial), result.film);
   add_guiding_stats(result.stats, trained);
   keep_training_samples(result.film, result.stats, trained);
   keep_trial(result.film, result.stats, trial);
@@ -171,17 +198,7 @@ RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera
 
 TrainedGuide train_importance_guide(const Scene& scene, const PinholeCamera& camera,
                                     const LightTracerOptions& options, RenderControl& control) {
-  PixelImportance pixel_weight;  // uniform until an iteration's image is there
-  return train_guide(scene, options, options, camera.width(), camera.height(), control,
-                     options.guide_start_importance,
-                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
-                       const LightTracerOptions o = iteration_options(options, spp, seed);
-                       const RenderStats s =
-                           drive_light(scene, camera, o, control, film, {{tree}, &collector, &pixel_weight});
-                       pixel_weight =
-                           PixelImportance(film_luminance(film), camera.width(), camera.height(), 2, 0.01);
-                       return s;
-                     });
+  return train_importance_guide_with(scene, camera, options, control, nullptr);
 }
 
 RenderResult render_light(const Scene& scene, const PinholeCamera& camera, const LightTracerOptions& options,

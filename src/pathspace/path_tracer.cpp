@@ -316,30 +316,68 @@ std::vector<float> pixel_estimates(const std::vector<double>& image, const Pinho
   return out;
 }
 
-// Renders the image with the guide of `trained`, then adds the training's stats and kept samples.
+// The pixel estimates adjoint-driven roulette plays against, from a guide's last training image.
+std::vector<float> roulette_estimates(const TrainedGuide& trained, const PathTracerOptions& options,
+                                      const PinholeCamera& camera) {
+  if (!options.guide_adjoint_roulette || !trained.last_image) return {};
+  return pixel_estimates(film_luminance(*trained.last_image), camera);
+}
+
+// Renders `film` guided by `trained` (with its roulette) or unguided.
+RenderStats drive_path_with(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
+                            RenderControl& control, Film& film, const TrainedGuide* trained) {
+  if (trained == nullptr) return drive_path(scene, camera, options, control, film, {});
+  const std::vector<float> estimates = roulette_estimates(*trained, options, camera);
+  return drive_path(scene, camera, options, control, film, {trained->tree.get()}, nullptr, &estimates);
+}
+
+// The radiance guide's training; `checkpoint` as train_guides's.
+TrainedGuide train_radiance_guide_with(const Scene& scene, const PinholeCamera& camera,
+                                       const PathTracerOptions& options, RenderControl& control,
+                                       const TrainingCheckpoint<1>* checkpoint) {
+  // With adjoint-driven roulette, iterations after the first play it too, from the previous
+  // iteration's image and tree: their samples are then like the image's, worth keeping.
+  std::vector<float> estimates;
+  return train_guide(
+      scene, options, options, camera.width(), camera.height(), control, options.guide_start_radiance,
+      [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
+        const PathTracerOptions o = iteration_options(options, spp, seed);
+        const RenderStats s = drive_path(scene, camera, o, control, film, {tree}, &collector, &estimates);
+        if (options.guide_adjoint_roulette) estimates = pixel_estimates(film_luminance(film), camera);
+        return s;
+      },
+      checkpoint);
+}
+
+// Trains the radiance guide, tries whether it pays (guiding_trial.h: during the training, which
+// it may stop, or after it), renders the image guided or not, and adds the training's and the
+// trial's stats and samples.
 RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                 RenderControl& control) {
-  TrainedGuide trained = train_radiance_guide(scene, camera, options, control);
-  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
-  const std::vector<float> estimates = options.guide_adjoint_roulette && trained.last_image
-                                           ? pixel_estimates(film_luminance(*trained.last_image), camera)
-                                           : std::vector<float>();
-  const auto render = [&](bool guided, const PathTracerOptions& o, Film& film) {
-    return guided ? drive_path(scene, camera, o, control, film, {trained.tree.get()}, nullptr, &estimates)
-                  : drive_path(scene, camera, o, control, film, {});
+  std::optional<GuidingTrial> trial;
+  const auto try_guide = [&](const TrainedGuide& t, bool during_training) {
+    const uint32_t pass_spp = trial_pass_spp(t.last_stats.spp, during_training);
+    trial = run_guiding_trial(options, options, pass_spp, t.tree != nullptr, camera.width(), camera.height(),
+                              [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+                                return drive_path_with(scene, camera, iteration_options(options, spp, seed), control,
+                                                       film, guided ? &t : nullptr);
+                              });
+    return trial && !trial->guided;
   };
-  const std::optional<GuidingTrial> trial =
-      run_guiding_trial(options, options, trained.last_stats.spp, trained.tree != nullptr, camera.width(),
-                        camera.height(), [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
-                          return render(guided, iteration_options(options, spp, seed), film);
-                        });
+  const TrainingCheckpoint<1> checkpoint = [&](const std::array<TrainedGuide, 1>& t) {
+    return try_guide(t[0], true);
+  };
+  TrainedGuide trained = train_radiance_guide_with(scene, camera, options, control, &checkpoint);
+  if (control.cancelled()) return interrupted_in_training(std::move(trained), camera.width(), camera.height());
+  if (!trial) try_guide(trained, false);
   const bool guided = !trial || trial->guided;
   RenderResult result{Film(camera.width(), camera.height()), {}};
-  result.stats = render(guided, after_trial(after_training(options, trained), trial), result.film);
+  result.stats = drive_path_with(scene, camera, after_trial(after_training(options, trained), trial), control,
+                                 result.film, guided ? &trained : nullptr);
   add_guiding_stats(result.stats, trained);
   keep_training_samples(result.film, result.stats, trained);
   keep_trial(result.film, result.stats, trial);
-  result.stats.guiding.adjoint_roulette = guided && !estimates.empty();
+  result.stats.guiding.adjoint_roulette = guided && !roulette_estimates(trained, options, camera).empty();
   result.stats.guiding.split_paths = result.stats.split_paths;
   result.stats.guiding.roulette_stops = result.stats.roulette_stops;
   return result;
@@ -349,17 +387,7 @@ RenderResult render_path_guided(const Scene& scene, const PinholeCamera& camera,
 
 TrainedGuide train_radiance_guide(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
                                   RenderControl& control) {
-  // With adjoint-driven roulette, iterations after the first play it too, from the previous
-  // iteration's image and tree: their samples are then like the image's, worth keeping.
-  std::vector<float> estimates;
-  return train_guide(scene, options, options, camera.width(), camera.height(), control,
-                     options.guide_start_radiance,
-                     [&](uint32_t spp, uint64_t seed, const SdTree* tree, RecordCollector& collector, Film& film) {
-                       const PathTracerOptions o = iteration_options(options, spp, seed);
-                       const RenderStats s = drive_path(scene, camera, o, control, film, {tree}, &collector, &estimates);
-                       if (options.guide_adjoint_roulette) estimates = pixel_estimates(film_luminance(film), camera);
-                       return s;
-                     });
+  return train_radiance_guide_with(scene, camera, options, control, nullptr);
 }
 
 RenderResult render_path(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,

@@ -44,6 +44,7 @@ struct GuidingStats {
   double bsdf_fraction = 1.0;  // the leaves' mean weighted by records (guiding/sd_tree.h)
   float bsdf_fraction_min = 1.f, bsdf_fraction_max = 1.f;
   bool stopped_by_records = false;  // the next iteration would have kept more than guide_max_records
+  bool stopped_by_trial = false;    // the trial during training found the guide does not pay
   bool seeded = false;               // the first iteration sampled a given guide (guide_start_*)
   bool adjoint_roulette = false;     // the image's paths played adjoint-driven roulette and splitting
   uint64_t split_paths = 0;          // paths splitting added to the image's samples
@@ -51,7 +52,7 @@ struct GuidingStats {
   uint32_t kept_spp = 0;             // samples per pixel of training iterations the image kept
   // The trial after training (guiding/guiding_trial.h): whether it ran, its two passes' samples
   // per pixel and seconds (kept in the image, counted in its spp and seconds), the guided
-  // pass's efficiency over the unguided one's, the passes' disagreement (above 1.25 the ratio is
+  // pass's efficiency over the unguided one's, the passes' disagreement (above 1.15 the ratio is
   // not trusted), and whether the image's own samples were guided.
   bool trial = false;
   uint32_t trial_spp = 0;

@@ -1,7 +1,8 @@
 // The SD-tree guide (guiding/): the quadtree's density integrates to one and is the density of
 // its samples; a tree is the same whatever order its records come in; the BSDF fraction is
 // learnt only from enough records; adjoint-driven roulette keeps the expectation; the trial after
-// training picks the more efficient of a guided and an unguided pass, unless they disagree.
+// training picks the more efficient of a guided and an unguided pass, unless they disagree, and
+// runs during the training before the iteration predicted to be its last.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "check.h"
 #include "core/rng.h"
 #include "guiding/adjoint_rr.h"
+#include "guiding/guide_training.h"
 #include "guiding/guiding_trial.h"
 #include "guiding/sd_tree.h"
 #include "lobe_records.h"
@@ -212,7 +214,7 @@ TEST_CASE("guiding_trial_picks_the_pass_of_least_variance_times_time") {
   GuidingOptions g;
   // Efficiency is 1 / (variance x time): guided 1 / (0.25 x 2) = 2, unguided 1 / (1 x 1) = 1.
   const auto run = [&](double sigma_guided, double cost_guided) {
-    return run_guiding_trial(est, g, 64, true, 16, 16, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+    return run_guiding_trial(est, g, 32, true, 64, 64, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
       return guided ? synthetic_pass(film, spp, seed, sigma_guided, cost_guided) : synthetic_pass(film, spp, seed, 1.0, 1.0);
     });
   };
@@ -233,7 +235,7 @@ TEST_CASE("guiding_trial_picks_the_pass_of_least_variance_times_time") {
   // at 20x the time (its true variance is 4000x the guided one's); the passes disagree far beyond
   // their variances, so the measurement is not trusted and the image stays guided.
   const std::optional<GuidingTrial> tail =
-      run_guiding_trial(est, g, 64, true, 16, 16, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
+      run_guiding_trial(est, g, 32, true, 64, 64, [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
         return guided ? synthetic_pass(film, spp, seed, 0.5, 20.0) : heavy_tailed_pass(film, spp, seed, 1e-3);
       });
   REQUIRE(tail);
@@ -246,7 +248,16 @@ TEST_CASE("guiding_trial_picks_the_pass_of_least_variance_times_time") {
   est.spp = 1024;
   CHECK(!run(0.5, 2.0));
   est.time_limit = 1.0;
-  CHECK(!run_guiding_trial(est, g, 7, true, 16, 16, [](bool, uint32_t, uint64_t, Film&) { return RenderStats{}; }));
+  CHECK(!run_guiding_trial(est, g, kTrialMinPassSpp - 1, true, 64, 64, [](bool, uint32_t, uint64_t, Film&) { return RenderStats{}; }));
   g.guide_trial = false;
   CHECK(!run(0.5, 2.0));
+}
+
+TEST_CASE("the_trial_checkpoint_comes_before_the_last_training_iteration") {
+  // Iterations double in time: after one of 0.1 s, at 0.2 s spent, the next (0.2 s) fits a
+  // budget of 0.5 s and the one after (0.4 s) would not: the next is the last, so now.
+  CHECK(checkpoint_due(0.2, 0.1, 0.5));
+  CHECK(!checkpoint_due(0.2, 0.1, 0.9));   // two more fit: later
+  CHECK(!checkpoint_due(0.2, 0.1, 0.35));  // none fits: the training ends, the trial follows it
+  CHECK(!checkpoint_due(0.2, 0.1, 0.0));   // no time limit: no trial
 }
