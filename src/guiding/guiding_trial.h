@@ -86,11 +86,16 @@ struct GuidingTrial {
   std::vector<FilmAccumulators> films;  // the passes rendered, guided first
 };
 
-// The samples per pixel of each of the trial's passes: half the last training iteration's, so
-// the trial costs about as much as that iteration. Before the last iteration (during the
-// training) that is the spp of the iteration before it.
-inline uint32_t trial_pass_spp(uint32_t last_iteration_spp, bool during_training) {
-  return during_training ? last_iteration_spp : last_iteration_spp / 2;
+// The samples per pixel of each of the trial's passes: half the last training iteration's (before
+// the last iteration, during the training, the whole spp of the one before it), so the trial
+// costs about as much as that iteration, but at least kTrialMinPassSpp; 0 (no trial) when the two
+// passes would take more than a quarter of the time limit, at the last iteration's cost per spp.
+inline uint32_t trial_pass_spp(const RenderStats& last_iteration, bool during_training, double time_limit) {
+  if (last_iteration.spp == 0) return 0;
+  const uint32_t spp =
+      std::max(during_training ? last_iteration.spp : last_iteration.spp / 2, kTrialMinPassSpp);
+  const double predicted = 2.0 * spp * last_iteration.seconds / last_iteration.spp;
+  return predicted <= 0.25 * time_limit ? spp : 0;
 }
 
 // Runs the trial when it applies (a time limit, a guide, guide_trial, and kTrialMinPassSpp samples

@@ -260,4 +260,15 @@ TEST_CASE("the_trial_checkpoint_comes_before_the_last_training_iteration") {
   CHECK(!checkpoint_due(0.2, 0.1, 0.9));   // two more fit: later
   CHECK(!checkpoint_due(0.2, 0.1, 0.35));  // none fits: the training ends, the trial follows it
   CHECK(!checkpoint_due(0.2, 0.1, 0.0));   // no time limit: no trial
+  // The passes: half the last iteration's spp after the training, its whole spp before the last
+  // iteration, at least kTrialMinPassSpp, and none when both would take over a quarter of the time.
+  RenderStats last;
+  last.spp = 128;
+  last.seconds = 0.4;
+  CHECK(trial_pass_spp(last, false, 2.0) == 64);
+  CHECK(trial_pass_spp(last, true, 4.0) == 128);
+  last.spp = 16;
+  last.seconds = 0.1;
+  CHECK(trial_pass_spp(last, false, 2.0) == kTrialMinPassSpp);  // 2 x 32 spp take 0.4 s
+  CHECK(trial_pass_spp(last, false, 1.0) == 0);
 }
