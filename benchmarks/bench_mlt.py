@@ -178,18 +178,25 @@ def render_budget(
 
 
 def record(scene: dualight.Scene, method: str, secs: float, stats: dict[str, Any]) -> dict:
-    """Seconds, spp (path, BDPT) or mutations per pixel (MLT) and the render's scalar stats."""
+    """Seconds, spp (path, BDPT) or mutations per pixel (MLT) and the render's scalar stats (with
+    a guided render's scalar guiding stats)."""
     out: dict[str, Any] = {"method": method, "seconds": secs}
     if method in MLT_METHODS:
         out["mpp"] = mutations(stats) / pixels_of(scene)
     else:
         out["spp"] = int(stats["spp"])
-    out["stats"] = {
+    out["stats"] = _scalars(stats, STATS_SKIP)
+    if isinstance(stats.get("guiding"), dict):  # guided renders: training, trial, decision
+        out["stats"]["guiding"] = _scalars(stats["guiding"], ())
+    return out
+
+
+def _scalars(stats: dict[str, Any], skip: Any) -> dict[str, Any]:
+    return {
         k: v
         for k, v in stats.items()
-        if k not in STATS_SKIP and (v is None or isinstance(v, bool | int | float | str))
+        if k not in skip and (v is None or isinstance(v, bool | int | float | str))
     }
-    return out
 
 
 def count_label(run: dict[str, Any]) -> str:
