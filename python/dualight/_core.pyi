@@ -428,7 +428,7 @@ class PathTracerOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
-        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -486,7 +486,7 @@ class PathTracerOptions:
     @property
     def guide_trial(self) -> bool:
         """
-        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         """
     @property
     def guiding(self) -> bool:
@@ -604,7 +604,7 @@ class LightTracerOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
-        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -662,7 +662,7 @@ class LightTracerOptions:
     @property
     def guide_trial(self) -> bool:
         """
-        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         """
     @property
     def guiding(self) -> bool:
@@ -733,7 +733,7 @@ class BdptOptions:
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
-        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        guide_trial: Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         guide_learn_bsdf_fraction: Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least guide_bsdf_fraction: the least second moment over its records); else guide_bsdf_fraction everywhere.
         guide_bsdf_fraction: Probability of sampling the BSDF instead of the guide (one-sample MIS); the least one when learnt.
         guide_spatial_threshold: Records a spatial leaf may hold at 1 spp before it is split (times sqrt(spp)).
@@ -791,7 +791,7 @@ class BdptOptions:
     @property
     def guide_trial(self) -> bool:
         """
-        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
+        Under a time limit, render before the last training iteration (or after training) a guided and an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and the image with the more efficient of the two (guided when the passes disagree beyond their variances; unguided stops the training).
         """
     @property
     def guiding(self) -> bool:

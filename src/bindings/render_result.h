@@ -169,8 +169,8 @@ void add_guiding_fields(OptionsClass<T>& o) {
              up_to(0.0, 64, "(training has at most 21 iterations)"))
       .field("guide_trial", &GuidingOptions::guide_trial,
              "Under a time limit, render before the last training iteration (or after training) a guided and "
-             "an unguided pass of half the last iteration's spp each (kept in the image), and the image with "
-             "the more efficient of the two (guided when the passes disagree beyond their variances; "
+             "an unguided pass of half the last iteration's spp each (at least 32; kept in the image), and "
+             "the image with the more efficient of the two (guided when the passes disagree beyond their variances; "
              "unguided stops the training).")
       .field("guide_learn_bsdf_fraction", &GuidingOptions::guide_learn_bsdf_fraction,
              "Learn each spatial leaf's probability of sampling the BSDF (of 0.1, ..., 1, at least "

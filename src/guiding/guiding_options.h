@@ -19,8 +19,9 @@ struct GuidingOptions {
   // mean, and the training's cost is partly recovered. The last iterations hold 3/4 of the training's
   // samples and were guided by trees close to the final one.
   uint32_t guide_keep_iterations = 2;
-  // Under a time limit, try after training whether the guide pays (guiding_trial.h): a guided
-  // and an unguided pass, kept in the image, and the image rendered by the more efficient.
+  // Under a time limit, try before the last training iteration (or after the training) whether
+  // the guide pays (guiding_trial.h): a guided and an unguided pass, kept in the image, and the
+  // image rendered by the more efficient; an unguided win stops the training.
   bool guide_trial = true;
   // Probability of sampling the BSDF instead of the guide (one-sample MIS, guided_sampling.h):
   // learnt per spatial leaf, at least guide_bsdf_fraction (sd_tree.h), or guide_bsdf_fraction

@@ -28,20 +28,25 @@
 
 namespace dualight {
 
-// The expected relMSE of a film's mean against a reference image (H x W x 3): the mean over pixels
-// and channels of its variance of the mean over (reference + eps)^2, eps 1 % of the reference's
-// mean (metrics.relmse's 0.01 made independent of the scene's scale).
-inline double expected_relmse(const Film& film, const std::vector<float>& reference) {
-  const std::vector<float> variance = film.variance_of_mean();
+// A pass's image: each pixel's and channel's mean and variance of the mean (H x W x 3).
+struct PassImage {
+  std::vector<float> mean, variance;
+  explicit PassImage(const Film& film) : mean(film.mean()), variance(film.variance_of_mean()) {}
+};
+
+// The expected relMSE of a pass's mean against a reference image: the mean over pixels and
+// channels of its variance of the mean over (reference + eps)^2, eps 1 % of the reference's mean
+// (metrics.relmse's 0.01 made independent of the scene's scale).
+inline double expected_relmse(const PassImage& pass, const std::vector<float>& reference) {
   double level = 0.0;
   for (const float v : reference) level += std::max(0.f, v);
   const double eps = std::max(1e-2 * level / static_cast<double>(std::max<size_t>(reference.size(), 1)), 1e-30);
   double sum = 0.0;
-  for (size_t i = 0; i < variance.size(); ++i) {
+  for (size_t i = 0; i < pass.variance.size(); ++i) {
     const double y = std::max(0.f, reference[i]) + eps;
-    sum += variance[i] / (y * y);
+    sum += pass.variance[i] / (y * y);
   }
-  return sum / static_cast<double>(std::max<size_t>(variance.size(), 1));
+  return sum / static_cast<double>(std::max<size_t>(pass.variance.size(), 1));
 }
 
 // How far two unbiased passes of the same image, of n samples per pixel each, disagree beyond
@@ -50,14 +55,13 @@ inline double expected_relmse(const Film& film, const std::vector<float>& refere
 // 2 (n - 1) degrees of freedom): about 1 when each pass's variance of the mean is right. Well
 // above 1, a pass underestimates its variance: its samples have missed the rare, bright paths
 // (a heavy tail), and its measured relMSE would flatter it.
-inline double pass_disagreement(const Film& a, const Film& b, uint32_t n) {
-  const std::vector<float> ma = a.mean(), mb = b.mean(), va = a.variance_of_mean(), vb = b.variance_of_mean();
+inline double pass_disagreement(const PassImage& a, const PassImage& b, uint32_t n) {
   double sum = 0.0;
   size_t count = 0;
-  for (size_t i = 0; i < ma.size(); ++i) {
-    const double v = static_cast<double>(va[i]) + vb[i];
+  for (size_t i = 0; i < a.mean.size(); ++i) {
+    const double v = static_cast<double>(a.variance[i]) + b.variance[i];
     if (!(v > 0.0)) continue;
-    const double d = static_cast<double>(ma[i]) - mb[i];
+    const double d = static_cast<double>(a.mean[i]) - b.mean[i];
     sum += d * d / v;
     ++count;
   }
@@ -121,13 +125,13 @@ std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const
     trial.films.push_back(films.back().accumulators());
   }
   if (trial.interrupted) return trial;
-  std::vector<float> reference = films[0].mean();
-  const std::vector<float> other = films[1].mean();
-  for (size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (reference[i] + other[i]);
-  const double cost_guided = expected_relmse(films[0], reference) * seconds[0];
-  const double cost_plain = expected_relmse(films[1], reference) * seconds[1];
+  const PassImage guided(films[0]), plain(films[1]);
+  std::vector<float> reference(guided.mean.size());
+  for (size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (guided.mean[i] + plain.mean[i]);
+  const double cost_guided = expected_relmse(guided, reference) * seconds[0];
+  const double cost_plain = expected_relmse(plain, reference) * seconds[1];
   trial.efficiency_ratio = cost_guided > 0.0 ? cost_plain / cost_guided : 1.0;
-  trial.disagreement = pass_disagreement(films[0], films[1], pass_spp);
+  trial.disagreement = pass_disagreement(guided, plain, pass_spp);
   trial.guided = !(trial.efficiency_ratio < 1.0) || !(trial.disagreement <= kTrialDisagreementLimit);
   return trial;
 }
