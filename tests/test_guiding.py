@@ -205,7 +205,10 @@ def test_a_time_limited_render_tries_whether_the_guide_pays(method: str) -> None
     assert g["trial_spp"] in tuple(2 * p for p in passes)
     assert g["efficiency_ratio"] > 0.0 and g["trial_disagreement"] > 0.0
     trusted = g["trial_disagreement"] <= 1.15
-    assert g["rendered_guided"] == (g["efficiency_ratio"] >= 1.0 or not trusted)
+    # before the last iteration the guided pass must also pay for it (ratio_to_pay above 1)
+    assert g["trial_ratio_to_pay"] >= 1.0
+    pays = g["efficiency_ratio"] >= g["trial_ratio_to_pay"]
+    assert g["rendered_guided"] == (pays or not trusted)
     # an unguided win before the last iteration stops the training there
     assert not (stopped and g["rendered_guided"])
     assert stats["spp"] > g["kept_spp"] + g["trial_spp"]

@@ -44,6 +44,7 @@ inline py::dict guiding_dict(const GuidingStats& g) {
   d["trial_spp"] = g.trial_spp;
   d["trial_seconds"] = g.trial_seconds;
   d["efficiency_ratio"] = g.efficiency_ratio;
+  d["trial_ratio_to_pay"] = g.trial_ratio_to_pay;
   d["trial_disagreement"] = g.trial_disagreement;
   d["rendered_guided"] = g.rendered_guided;
   return d;
@@ -71,7 +72,7 @@ inline py::dict stats_dict(const RenderStats& s) {
     g["radiance"] = guiding_dict(s.guiding);
     g["importance"] = guiding_dict(s.importance_guiding);
     const py::dict radiance = g["radiance"];
-    for (const char* key : {"trial", "trial_spp", "trial_seconds", "efficiency_ratio", "trial_disagreement",
+    for (const char* key : {"trial", "trial_spp", "trial_seconds", "efficiency_ratio", "trial_ratio_to_pay", "trial_disagreement",
                             "rendered_guided"}) {
       g[key] = radiance[key];  // one trial judged both guides together
     }

@@ -60,6 +60,7 @@ struct TrainedGuide {
   // roulette's pixel estimates, and what a render interrupted during training returns.
   std::optional<Film> last_image;
   RenderStats last_stats;
+  double last_iteration_seconds = 0.0;  // its render and tree building
   // The last finished iterations' samples (at most guide_keep_iterations, oldest first), which
   // the image keeps (keep_training_samples).
   struct Kept {
@@ -172,7 +173,9 @@ std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOpti
       out[i].stats.records = records.size();
     }
     last_seconds = elapsed() - start_time;
+    first.last_iteration_seconds = last_seconds;
     if (checkpoint != nullptr && *checkpoint && checkpoint_due(elapsed(), last_seconds, time_budget)) {
+      for (TrainedGuide& t : out) t.stats.training_seconds = elapsed();  // so far
       const Stopwatch looking;
       const bool stop = (*checkpoint)(out);
       paused += looking();

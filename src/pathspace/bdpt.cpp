@@ -99,8 +99,7 @@ RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera,
   const auto try_guides = [&](const std::array<TrainedGuide, 2>& t, bool during_training) {
     // With strategy images the passes would need layers: no trial.
     const bool has_guide = (t[0].tree || t[1].tree) && !options.strategy_images;
-    const uint32_t pass_spp = trial_pass_spp(t[0].last_stats, during_training, options.time_limit);
-    trial = run_guiding_trial(options, options, pass_spp, has_guide, camera.width(), camera.height(),
+    trial = try_guiding_trial(options, options, t[0], has_guide, during_training, camera.width(), camera.height(),
                               [&](bool guided, uint32_t spp, uint64_t seed, Film& into) {
                                 return render(guided ? &t : nullptr, iteration_options(options, spp, seed), into);
                               });

@@ -171,8 +171,7 @@ RenderResult render_light_guided(const Scene& scene, const PinholeCamera& camera
   };
   std::optional<GuidingTrial> trial;
   const auto try_guide = [&](const TrainedGuide& t, bool during_training) {
-    const uint32_t pass_spp = trial_pass_spp(t.last_stats, during_training, options.time_limit);
-    trial = run_guiding_trial(options, options, pass_spp, t.tree != nullptr, camera.width(), camera.height(),
+    trial = try_guiding_trial(options, options, t, t.tree != nullptr, during_training, camera.width(), camera.height(),
                               [&](bool guided, uint32_t spp, uint64_t seed, Film& film) {
                                 return render(guided ? t.tree.get() : nullptr, iteration_options(options, spp, seed),
                                               film);
