@@ -387,13 +387,12 @@ def render(
         under a ``time_limit``, before the training iteration predicted to be the last (or
         after the training), a pass guided by the guide so far and an unguided pass of half
         the last iteration's samples per pixel each (at least 32), both kept in the image,
-        measure which is more efficient, 1 / (expected relMSE x seconds, against the last
-        training iteration's image blurred over 3x3 pixels), and the image is rendered by
-        that one (unguided stops the training there: ``stopped_by_trial``; before the last
-        iteration the guided pass must also pay for that iteration's time beyond its kept
-        samples: ``trial_ratio_to_pay``), unless the passes disagree beyond their own
-        variances (a heavy tail one of them missed: ``trial_disagreement`` above 1.15),
-        when it stays guided; ``stats["guiding"]`` reports ``trial``, ``trial_spp``,
+        measure which is more efficient, 1 / (expected relMSE x seconds), and the image is
+        rendered by that one (unguided stops the training there: ``stopped_by_trial``;
+        before the last iteration the guided pass must also pay for that iteration's time
+        beyond its kept samples: ``trial_ratio_to_pay``), unless the passes disagree
+        beyond their own variances (a heavy tail one of them missed: ``trial_disagreement``
+        above 1.15), when it stays guided; ``stats["guiding"]`` reports ``trial``, ``trial_spp``,
         ``trial_seconds``, ``efficiency_ratio`` (guided over unguided),
         ``trial_ratio_to_pay``, ``trial_disagreement`` and ``rendered_guided``; with
         ``spp`` alone there is no trial, so the render stays a function of the seed),

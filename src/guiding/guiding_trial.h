@@ -6,18 +6,18 @@
 // pixel and each on its own seed, rendered exactly as the image would be. Each pass's efficiency is
 // 1 / (expected relMSE of its mean x its seconds), both independent of its sample count, the
 // relMSE of pbrt-v4's imgtool (metrics.relmse) with each pixel's variance of the mean in place
-// of the squared error and, in place of the reference, the last training iteration's image
-// box-blurred over 3x3 pixels (trial_reference). Measured on the path tracer in issue 22
-// (guided over unguided relMSE, 64 spp passes, 5 to 8 seeds, against the true reference's
-// 1.48, 1.48, 0.34 on the caustic box, rooms(10) and the door):
-//  - the passes' own mean is not independent of them: a pass's bright outliers raise its
-//    variance and the reference together, so the noisier pass looks better than it is: 1.16,
-//    1.35, and 1.14 on the door, where the unguided pass misses the light through the gap;
-//  - the last iteration's image is independent, but its noise in dark pixels makes their weights
-//    blow up: 2.96, 2.70, 1.55, single seeds from 0.26 to 6.7;
-//  - its 3x3 box mean: 1.27, 1.30, 0.32, spread within 0.94-1.79, 1.26-1.32, 0.24-0.50; the
-//    blur moves weight off dark pixels beside bright ones (the true reference blurred gives the
-//    same), about 10 % in the guided pass's favour on these scenes.
+// of the squared error and the two passes' mean in place of the reference.
+// That reference is not independent of the passes: a pass's bright outliers raise its variance
+// and the reference together, so the noisier pass looks better than it is (path tracer, 64 spp
+// passes, guided over unguided relMSE 1.16, 1.35, 1.14 on the caustic box, rooms(10) and the door
+// where the true reference gives 1.48, 1.48, 0.34; the door's unguided pass misses the light
+// through the gap, which pass_disagreement catches). An independent one, the last training
+// iteration's image blurred over 3x3 pixels, gave 1.27, 1.30, 0.32, but its dark pixels let a
+// single bright sample of one pass decide: in bench_guiding at 8 s, 2 of 30 trials measured
+// guiding 4.8x and 1.2x as efficient where those renders were about 0.6x and 0.8x (BDPT on the
+// caustic box, the light tracer on rooms(10) dark), and the table came out worse than with the
+// passes' mean (issue 22). The passes' mean bounds each pixel's term (a bright sample raises its
+// own denominator), and is kept.
 // The image is then rendered by the more efficient one. Both passes are unbiased estimates of the
 // same image, so the image keeps their samples (its plain mean, as with the kept training
 // iterations). The trial runs during the training, before the iteration predicted to be its last
@@ -36,7 +36,6 @@
 
 #include "core/rng.h"
 #include "film/film.h"
-#include "film/pixel_estimate.h"
 #include "guiding/guide_training.h"
 #include "guiding/guiding_options.h"
 #include "pathspace/estimator_options.h"
@@ -63,21 +62,6 @@ inline double expected_relmse(const PassImage& pass, const std::vector<float>& r
     sum += pass.variance[i] / (y * y);
   }
   return sum / static_cast<double>(std::max<size_t>(pass.variance.size(), 1));
-}
-
-// The trial's reference from an image independent of its passes (the last training iteration's):
-// each channel of its mean, box-blurred over 3x3 pixels (pixel_estimate.h).
-inline std::vector<float> trial_reference(const Film& image) {
-  const std::vector<float> mean = image.mean();
-  const size_t n = static_cast<size_t>(image.width()) * image.height();
-  std::vector<float> out(mean.size());
-  std::vector<double> channel(n);
-  for (size_t c = 0; c < 3; ++c) {
-    for (size_t i = 0; i < n; ++i) channel[i] = mean[3 * i + c];
-    const std::vector<double> blurred = box_blurred(channel, image.width(), image.height(), 1);
-    for (size_t i = 0; i < n; ++i) out[3 * i + c] = static_cast<float>(blurred[i]);
-  }
-  return out;
 }
 
 // How far two unbiased passes of the same image, of n samples per pixel each, disagree beyond
@@ -154,14 +138,12 @@ inline uint32_t trial_pass_spp(const RenderStats& last_iteration, bool during_tr
 
 // Runs the trial when it applies (a time limit, a guide, guide_trial, and kTrialMinPassSpp samples
 // per pixel per pass; with spp too, the image must have samples left). render(guided, spp, seed,
-// film) renders one pass and returns its stats. `reference` is an image independent of the passes
-// (trial_reference; null: their mean, as the synthetic tests do); `spent`, the seconds the render
-// has taken so far; `ahead`, the training still to run.
+// film) renders one pass and returns its stats. `spent` is the seconds the render has taken so
+// far; `ahead`, the training still to run.
 template <class RenderPass>
 std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const GuidingOptions& g, uint32_t pass_spp,
                                               bool has_guide, int width, int height, const RenderPass& render,
-                                              const Film* reference = nullptr, double spent = 0.0,
-                                              const TrainingAhead& ahead = {}) {
+                                              double spent = 0.0, const TrainingAhead& ahead = {}) {
   if (!g.guide_trial || !has_guide || est.time_limit <= 0.0 || pass_spp < kTrialMinPassSpp) return std::nullopt;
   if (est.spp > 0 && 2ull * pass_spp >= est.spp) return std::nullopt;
   GuidingTrial trial;
@@ -180,12 +162,10 @@ std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const
   }
   if (trial.interrupted) return trial;
   const PassImage guided(films[0]), plain(films[1]);
-  std::vector<float> y = reference != nullptr ? trial_reference(*reference) : std::vector<float>(guided.mean.size());
-  if (reference == nullptr) {
-    for (size_t i = 0; i < y.size(); ++i) y[i] = 0.5f * (guided.mean[i] + plain.mean[i]);
-  }
-  const double cost_guided = expected_relmse(guided, y) * seconds[0];
-  const double cost_plain = expected_relmse(plain, y) * seconds[1];
+  std::vector<float> reference(guided.mean.size());
+  for (size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (guided.mean[i] + plain.mean[i]);
+  const double cost_guided = expected_relmse(guided, reference) * seconds[0];
+  const double cost_plain = expected_relmse(plain, reference) * seconds[1];
   trial.efficiency_ratio = cost_guided > 0.0 ? cost_plain / cost_guided : 1.0;
   trial.disagreement = pass_disagreement(guided, plain, pass_spp);
   trial.ratio_to_pay = ratio_to_pay(est.time_limit - spent - trial.seconds, ahead.seconds,
@@ -196,7 +176,7 @@ std::optional<GuidingTrial> run_guiding_trial(const EstimatorOptions& est, const
 
 // The trial of the guide `t` trained so far (guiding_trial.h's run_guiding_trial), during the
 // training (its checkpoint, the last iteration still ahead) or after it: passes of trial_pass_spp,
-// judged against t's last iteration's image, the time spent being t's training's.
+// the time spent being t's training's.
 template <class RenderPass>
 std::optional<GuidingTrial> try_guiding_trial(const EstimatorOptions& est, const GuidingOptions& g,
                                               const TrainedGuide& t, bool has_guide, bool during_training, int width,
@@ -207,7 +187,7 @@ std::optional<GuidingTrial> try_guiding_trial(const EstimatorOptions& est, const
     ahead.kept_spp = g.guide_keep_iterations > 0 ? 2 * t.last_stats.spp : 0;
   }
   return run_guiding_trial(est, g, trial_pass_spp(t.last_stats, during_training, est.time_limit), has_guide, width,
-                           height, render, t.last_image ? &*t.last_image : nullptr, t.stats.training_seconds, ahead);
+                           height, render, t.stats.training_seconds, ahead);
 }
 
 // The image's options after a trial: its time and samples per pixel off the budget.
