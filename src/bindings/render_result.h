@@ -72,8 +72,8 @@ inline py::dict stats_dict(const RenderStats& s) {
     g["radiance"] = guiding_dict(s.guiding);
     g["importance"] = guiding_dict(s.importance_guiding);
     const py::dict radiance = g["radiance"];
-    for (const char* key : {"trial", "trial_spp", "trial_seconds", "efficiency_ratio", "trial_ratio_to_pay", "trial_disagreement",
-                            "rendered_guided"}) {
+    for (const char* key : {"trial", "trial_spp", "trial_seconds", "efficiency_ratio", "trial_ratio_to_pay",
+                            "trial_disagreement", "rendered_guided"}) {
       g[key] = radiance[key];  // one trial judged both guides together
     }
     d["guiding"] = g;

@@ -50,15 +50,16 @@ struct GuidingStats {
   uint64_t split_paths = 0;          // paths splitting added to the image's samples
   uint64_t roulette_stops = 0;       // paths the roulette stopped
   uint32_t kept_spp = 0;             // samples per pixel of training iterations the image kept
-  // The guiding trial (guiding/guiding_trial.h): whether it ran, its two passes' samples
-  // per pixel and seconds (kept in the image, counted in its spp and seconds), the guided
-  // pass's efficiency over the unguided one's and what it had to reach, the passes' disagreement (above 1.15 the ratio is
-  // not trusted), and whether the image's own samples were guided.
+  // The guiding trial (guiding/guiding_trial.h): whether it ran, its two passes' samples per
+  // pixel and seconds (kept in the image, counted in its spp and seconds), the guided pass's
+  // efficiency over the unguided one's and what it had to reach (0: no trial), the passes'
+  // disagreement (above 1.15 the ratio is not trusted), and whether the image's own samples were
+  // guided.
   bool trial = false;
   uint32_t trial_spp = 0;
   double trial_seconds = 0.0;
   double efficiency_ratio = 0.0;
-  double trial_ratio_to_pay = 0.0;   // what efficiency_ratio had to reach (guiding_trial.h's ratio_to_pay)
+  double trial_ratio_to_pay = 0.0;  // guiding_trial.h's ratio_to_pay
   double trial_disagreement = 0.0;
   bool rendered_guided = true;
 };
