@@ -76,12 +76,18 @@ struct TrainedGuide {
 template <size_t N>
 using TrainingCheckpoint = std::function<bool(const std::array<TrainedGuide, N>&)>;
 
+// Each training iteration renders kIterationGrowth times the samples per pixel of the one before,
+// and is predicted to take that many times its seconds.
+constexpr uint32_t kIterationGrowth = 2;
+inline double next_iteration_seconds(double last_seconds) { return kIterationGrowth * last_seconds; }
+
 // Whether the checkpoint is due after an iteration that took last_seconds, the training having
-// spent `spent` of its time_budget: the next iteration is predicted (taking twice the last) to be
-// the last that fits.
+// spent `spent` of its time_budget: the next iteration is predicted to be the last that fits (the
+// one after it would not).
 inline bool checkpoint_due(double spent, double last_seconds, double time_budget) {
   if (time_budget <= 0.0) return false;
-  return spent + 2.0 * last_seconds <= time_budget && spent + 6.0 * last_seconds > time_budget;
+  const double next = next_iteration_seconds(last_seconds);
+  return spent + next <= time_budget && spent + (1.0 + kIterationGrowth) * next > time_budget;
 }
 
 // The scene's box, grown a little so every vertex falls inside.
@@ -139,9 +145,9 @@ std::array<TrainedGuide, N> train_guides(const Scene& scene, const EstimatorOpti
   uint32_t spp = 1, spp_done = 0;
   double last_seconds = 0.0;
   size_t last_records = 0;  // the most any guide kept in the last iteration
-  for (int k = 0;; ++k, spp *= 2) {
+  for (int k = 0;; ++k, spp *= kIterationGrowth) {
     if (est.spp > 0 && spp_done + spp > spp_budget) break;
-    if (time_budget > 0.0 && elapsed() + 2.0 * last_seconds > time_budget) break;
+    if (time_budget > 0.0 && elapsed() + next_iteration_seconds(last_seconds) > time_budget) break;
     if (2.0 * static_cast<double>(last_records) > g.guide_max_records) {
       for (TrainedGuide& t : out) t.stats.stopped_by_records = true;
       break;

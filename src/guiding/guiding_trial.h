@@ -183,8 +183,8 @@ std::optional<GuidingTrial> try_guiding_trial(const EstimatorOptions& est, const
                                               int height, const RenderPass& render) {
   TrainingAhead ahead;
   if (during_training) {
-    ahead.seconds = 2.0 * t.last_iteration_seconds;
-    ahead.kept_spp = g.guide_keep_iterations > 0 ? 2 * t.last_stats.spp : 0;
+    ahead.seconds = next_iteration_seconds(t.last_iteration_seconds);
+    ahead.kept_spp = g.guide_keep_iterations > 0 ? kIterationGrowth * t.last_stats.spp : 0;
   }
   return run_guiding_trial(est, g, trial_pass_spp(t.last_stats, during_training, est.time_limit), has_guide, width,
                            height, render, t.stats.training_seconds, ahead);
