@@ -34,9 +34,13 @@ inline VertexGuide vertex_guide(const SdTree::Leaf& leaf, const Bsdf& b) {
 }
 
 // Samples local wi from the mixture; u_select picks the strategy (drawn only when g is active, so
-// an unguided walk uses the sampler as before). bs.pdf_w is the mixture's density.
+// an unguided walk uses the sampler as before). bs.pdf_w is the mixture's density. bsdf_ratio is
+// the weight BSDF sampling alone would have given the direction over bs.weight (the mixture's
+// density over the BSDF's; 1 unguided): Russian roulette plays on the throughput times it
+// (russian_roulette.h).
 inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& g, const Vec3& wo, float u_select,
-                          Point2 u, TransportMode m, BsdfSample& bs) {
+                          Point2 u, TransportMode m, BsdfSample& bs, float& bsdf_ratio) {
+  bsdf_ratio = 1.f;
   if (!g.active()) return sample(b, wo, u, m, bs);
   const float alpha = g.bsdf_fraction;
   Color f_cos;
@@ -46,6 +50,7 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
     if (bs.delta) {
       bs.weight = bs.weight / alpha;
       bs.pdf_w *= alpha;
+      bsdf_ratio = alpha;
       return true;
     }
     // A non-Dirac sample's pdf_w is pdf_w(b, wo, wi) (bsdf.h), so f |cos| = weight pdf_w.
@@ -63,6 +68,7 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
   if (is_black(f_cos) || !(pdf > 0.f)) return false;
   bs.weight = f_cos / pdf;
   bs.pdf_w = pdf;
+  bsdf_ratio = pdf_bsdf > 0.f ? pdf / pdf_bsdf : 1.f;
   return true;
 }
 

@@ -12,6 +12,7 @@
 #include "guiding/guide_training.h"
 #include "guiding/guiding_trial.h"
 #include "guiding/guided_sampling.h"
+#include "pathspace/russian_roulette.h"
 #include "materials/shading_normal.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/shadow_ray.h"
@@ -148,6 +149,7 @@ struct CameraPathState {
   int depth = 1;            // the number of segments up to and including `ray`: the index of the vertex it hits
   int paths = 1;            // how many paths splitting has made of the camera sample so far
   int recorded = -1;        // the recorder's last vertex on this path's branch (-1: none)
+  float bsdf_ratio = 1.f;   // the product of sample_guided's bsdf_ratio so far (russian_roulette.h)
 };
 
 // Adjoint-driven roulette and splitting (adjoint_rr.h) for a path at a vertex of `leaf`, in a
@@ -230,8 +232,12 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
     const auto leave = [&](CameraPathState& next) {
       BsdfSample bs;
       const float u_guide = guide.active() ? sampler.next_1d() : 0.f;
-      if (!sample_guided(bsdf, frame, guide, wo, u_guide, sampler.next_2d(), TransportMode::Radiance, bs)) return false;
+      float bsdf_ratio;
+      if (!sample_guided(bsdf, frame, guide, wo, u_guide, sampler.next_2d(), TransportMode::Radiance, bs, bsdf_ratio)) {
+        return false;
+      }
       next.beta *= bs.weight;
+      next.bsdf_ratio *= bsdf_ratio;
       next.prev_pdf_w = bs.pdf_w;
       next.prev_delta = bs.delta;
       const Vec3 wi_world = frame.to_world(bs.wi);
@@ -242,7 +248,7 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
       next.ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n),
                      wi_world};
       if (!go_on.known && next.depth >= opt.rr_depth) {
-        const float q = std::min(max_component(next.beta), 0.95f);
+        const float q = roulette_survival(next.beta, next.bsdf_ratio);
         if (!(sampler.next_1d() < q)) return false;
         next.beta /= q;
       }

@@ -13,6 +13,7 @@
 #include "guiding/sd_tree.h"
 #include "pathspace/path.h"
 #include "pathspace/render_stats.h"
+#include "pathspace/russian_roulette.h"
 
 namespace dualight {
 
@@ -64,6 +65,7 @@ template <bool kGuided = false, class Sampler>
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
                  int rr_depth, TransportMode mode, Path& path, TraceCounters& counters, const WalkGuide& guide = {}) {
   Color throughput(1.f);  // beta without the start's emission, for Russian roulette
+  float bsdf_ratio = 1.f;  // the product of sample_guided's (russian_roulette.h)
   for (size_t added = 0; added < max_new; ++added) {
     SurfaceHit hit;
     ++counters.rays;
@@ -83,13 +85,13 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     const Frame frame = shading_frame(cur);
     const Vec3 wo = frame.to_local(cur.wo);
     BsdfSample bs;
-    float pdf_rev_w = 0.f;
+    float pdf_rev_w = 0.f, vertex_bsdf_ratio = 1.f;
     const bool sampled = with_bsdf(cur, [&](const Bsdf& b) {
       if constexpr (kGuided) {
         const VertexGuide g = guide.tree != nullptr ? vertex_guide(guide.tree->at(cur.p), b) : VertexGuide{};
         if (guide.tree != nullptr) keep_guide(cur, mode == TransportMode::Radiance, g);
         const float u_select = g.active() ? sampler.next_1d() : 0.f;
-        if (!sample_guided(b, frame, g, wo, u_select, sampler.next_2d(), mode, bs)) return false;
+        if (!sample_guided(b, frame, g, wo, u_select, sampler.next_2d(), mode, bs, vertex_bsdf_ratio)) return false;
       } else if (!sample(b, wo, sampler.next_2d(), mode, bs)) {
         return false;
       }
@@ -115,11 +117,12 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     const Color weight = bs.weight * walk_weight_correction(cur.n, cur.ns, cur.wo, wi, mode);
     beta *= weight;
     throughput *= weight;
+    bsdf_ratio *= vertex_bsdf_ratio;
     Vertex& prev = path[path.size() - 2];
     prev.pdf_rev = solid_angle_to_area(pdf_rev_w, cur, prev);
 
     if (static_cast<int>(path.size()) - 1 >= rr_depth) {
-      const float q = std::min(max_component(throughput), 0.95f);
+      const float q = roulette_survival(throughput, bsdf_ratio);
       if (!(sampler.next_1d() < q)) return;
       beta /= q;
       throughput /= q;

@@ -1,6 +1,7 @@
 // The SD-tree guide (guiding/): the quadtree's density integrates to one and is the density of
 // its samples; a tree is the same whatever order its records come in; the BSDF fraction is
-// learnt only from enough records; adjoint-driven roulette keeps the expectation; the trial after
+// learnt only from enough records; adjoint-driven roulette keeps the expectation; Russian roulette
+// keeps the paths the guide sent where it learnt light comes from; the trial after
 // training picks the more efficient of a guided and an unguided pass, unless they disagree, and
 // runs during the training before the iteration predicted to be its last.
 #include <algorithm>
@@ -11,9 +12,11 @@
 #include "core/rng.h"
 #include "guiding/adjoint_rr.h"
 #include "guiding/guide_training.h"
+#include "guiding/guided_sampling.h"
 #include "guiding/guiding_trial.h"
 #include "guiding/sd_tree.h"
 #include "lobe_records.h"
+#include "pathspace/russian_roulette.h"
 
 using namespace dualight;
 
@@ -171,6 +174,50 @@ TEST_CASE("adjoint_roulette_keeps_the_expectation_and_its_bounds") {
 
 // A pass of a synthetic estimator: every pixel's samples are 1 + sigma * (a standard normal), and
 // the pass "took" seconds_per_sample per sample.
+// A Lambertian vertex (albedo 0.5) guided by a quadtree that learnt light from a 15-degree cone
+// around its normal, at the depth where Russian roulette starts: how often a path goes into the
+// cone and survives the roulette, guided (bsdf_fraction 0.5) and by the BSDF alone. The roulette on
+// the BSDF's throughput (russian_roulette.h) keeps the guide's gain; on the guided throughput it
+// would stop guided paths in proportion to their density and undo it.
+TEST_CASE("russian_roulette_keeps_the_paths_the_guide_sent") {
+  const Vec3 lobe(0.f, 0.f, 1.f);
+  GuideRecords records = lobe_records(20000, lobe, 5);
+  sort_by_square_code(records.data(), records.data() + records.size());
+  const DirectionalQuadtree quadtree(records.data(), records.data() + records.size(), 0.01f, 16);
+  const Bsdf bsdf = Lambertian{Color(0.5f)};
+  const Frame frame = Frame::from_normal(lobe);
+  const Vec3 wo(0.f, 0.f, 1.f);
+  const VertexGuide guided{&quadtree, 0.5f}, unguided{};
+  const float cone = std::cos(15.f * kPi / 180.f);
+  const int n = 200000;
+  // E[in the cone x survival] for a guide, with the roulette on the BSDF's throughput and on the
+  // sample's own.
+  const auto survivors_in_cone = [&](const VertexGuide& g, double& on_bsdf, double& on_own) {
+    Pcg32 rng(11, 2);
+    on_bsdf = on_own = 0.0;
+    for (int k = 0; k < n; ++k) {
+      BsdfSample bs;
+      float ratio;
+      const float u = rng.next_float();
+      if (!sample_guided(bsdf, frame, g, wo, u, {rng.next_float(), rng.next_float()}, TransportMode::Radiance, bs,
+                         ratio)) {
+        continue;
+      }
+      if (dot(frame.to_world(bs.wi), lobe) < cone) continue;
+      on_bsdf += roulette_survival(bs.weight, ratio) / n;
+      on_own += roulette_survival(bs.weight) / n;
+    }
+  };
+  double guided_bsdf, guided_own, plain_bsdf, plain_own;
+  survivors_in_cone(guided, guided_bsdf, guided_own);
+  survivors_in_cone(unguided, plain_bsdf, plain_own);
+  CHECK(plain_bsdf == doctest::Approx(plain_own));  // unguided: the same roulette
+  CHECK(guided_bsdf > 3.0 * plain_bsdf);            // the guide's gain survives the roulette
+  CHECK(guided_own < 1.2 * plain_own);              // the control: on its own throughput it does not
+  MESSAGE("in the cone and surviving: guided " << guided_bsdf << " (on its own throughput " << guided_own
+                                                << "), unguided " << plain_bsdf);
+}
+
 static RenderStats synthetic_pass(Film& film, uint32_t spp, uint64_t seed, double sigma, double seconds_per_sample) {
   Pcg32 rng(seed, 7);
   for (size_t p = 0; p < film.pixel_count(); ++p) {
