@@ -12,6 +12,9 @@ struct BsdfSample {
   Color weight;        // f * |cos(wi)| / pdf_w
   float pdf_w = 0.f;   // solid-angle density, or the lobe's probability when `delta`
   bool delta = false;  // wi is a Dirac direction: no other strategy can generate it
+  // A refraction's relative index of refraction, IOR on wi's side over wo's (its Radiance weight
+  // carries 1 / eta^2); 1 for a reflection. Russian roulette undoes that factor (russian_roulette.h).
+  float eta = 1.f;
 };
 
 // The Dirac lobe of a BSDF that joins wo (the camera side) and wi (the light side), for

@@ -35,6 +35,7 @@ inline bool sample(const Dielectric& b, const Vec3& wo, Point2 u, TransportMode 
     s.wi = reflect_local(wo);
     s.pdf_w = F.R;
     s.weight = Color(1.f);  // R / R
+    s.eta = 1.f;
     return true;
   }
   const float inv = 1.f / F.eta_ratio;
@@ -43,6 +44,7 @@ inline bool sample(const Dielectric& b, const Vec3& wo, Point2 u, TransportMode 
   // Radiance is not conserved across the interface, importance is: L scales by (eta_o / eta_i)^2
   // from the wi side to the wo side [Veach 1997, sec. 5.2]; (1 - R) / (1 - R) cancels.
   s.weight = Color(mode == TransportMode::Radiance ? inv * inv : 1.f);
+  s.eta = F.eta_ratio;
   return s.pdf_w > 0.f;
 }
 

@@ -40,6 +40,7 @@ bool sample(const RoughDielectric& b, const Vec3& wo, Point2 u, TransportMode mo
     s.wi = refract_about(wo, m, cos_om, F);
   }
   if (reflect != (s.wi.z * wo.z > 0.f)) return false;
+  s.eta = reflect ? 1.f : (wo.z > 0.f ? b.eta : 1.f / b.eta);  // as the half vector's (rough_dielectric.h)
   return finish_sample(b, wo, s.wi, mode, s);
 }
 

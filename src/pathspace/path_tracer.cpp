@@ -149,7 +149,7 @@ struct CameraPathState {
   int depth = 1;            // the number of segments up to and including `ray`: the index of the vertex it hits
   int paths = 1;            // how many paths splitting has made of the camera sample so far
   int recorded = -1;        // the recorder's last vertex on this path's branch (-1: none)
-  float bsdf_ratio = 1.f;   // the product of sample_guided's bsdf_ratio so far (russian_roulette.h)
+  float roulette_scale = 1.f;  // russian_roulette.h
 };
 
 // Adjoint-driven roulette and splitting (adjoint_rr.h) for a path at a vertex of `leaf`, in a
@@ -237,7 +237,7 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
         return false;
       }
       next.beta *= bs.weight;
-      next.bsdf_ratio *= bsdf_ratio;
+      next.roulette_scale *= roulette_scale(bs, TransportMode::Radiance, bsdf_ratio);
       next.prev_pdf_w = bs.pdf_w;
       next.prev_delta = bs.delta;
       const Vec3 wi_world = frame.to_world(bs.wi);
@@ -248,7 +248,7 @@ void extend_path(const Scene& scene, const PathTracerOptions& opt, Sampler& samp
       next.ray = Ray{scene.spawn_origin(hit.p, leaves_front(hit.n, hit.ns, wi_world, bs.wi.z) ? hit.n : -hit.n),
                      wi_world};
       if (!go_on.known && next.depth >= opt.rr_depth) {
-        const float q = roulette_survival(next.beta, next.bsdf_ratio);
+        const float q = roulette_survival(next.beta, next.roulette_scale);
         if (!(sampler.next_1d() < q)) return false;
         next.beta /= q;
       }

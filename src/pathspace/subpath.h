@@ -65,7 +65,7 @@ template <bool kGuided = false, class Sampler>
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, float pdf_w, size_t max_new,
                  int rr_depth, TransportMode mode, Path& path, TraceCounters& counters, const WalkGuide& guide = {}) {
   Color throughput(1.f);  // beta without the start's emission, for Russian roulette
-  float bsdf_ratio = 1.f;  // the product of sample_guided's (russian_roulette.h)
+  float rr_scale = 1.f;  // the roulette scale (russian_roulette.h)
   for (size_t added = 0; added < max_new; ++added) {
     SurfaceHit hit;
     ++counters.rays;
@@ -117,12 +117,12 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, Color beta, floa
     const Color weight = bs.weight * walk_weight_correction(cur.n, cur.ns, cur.wo, wi, mode);
     beta *= weight;
     throughput *= weight;
-    bsdf_ratio *= vertex_bsdf_ratio;
+    rr_scale *= roulette_scale(bs, mode, vertex_bsdf_ratio);
     Vertex& prev = path[path.size() - 2];
     prev.pdf_rev = solid_angle_to_area(pdf_rev_w, cur, prev);
 
     if (static_cast<int>(path.size()) - 1 >= rr_depth) {
-      const float q = roulette_survival(throughput, bsdf_ratio);
+      const float q = roulette_survival(throughput, rr_scale);
       if (!(sampler.next_1d() < q)) return;
       beta /= q;
       throughput /= q;

@@ -1,5 +1,6 @@
 // Fresnel reflectance of a smooth dielectric and the delta BSDFs' sampled geometry. The
 // statistical tests (lobe frequencies, chi-square of the Lambertian) are in tests/test_materials.py.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -188,4 +189,37 @@ TEST_CASE("delta_lobes_match_sampling") {
   }
   // Total internal reflection: no refracted direction from inside beyond the critical angle.
   CHECK(!delta_direction(Bsdf{Dielectric{1.5f}}, normalize(Vec3(0.9f, 0.f, -0.2f)), true, wi));
+}
+
+// A refraction's BsdfSample::eta is the factor its Radiance weight carries as 1 / eta^2 (so
+// Russian roulette can take it out, russian_roulette.h): for the same random numbers, the Radiance
+// weight times eta^2 is the Importance weight; a reflection has eta 1 and equal weights. Smooth
+// and rough glass, from both sides.
+TEST_CASE("a_refraction_says_its_eta_and_radiance_weight_times_eta_squared_is_importance") {
+  const Bsdf smooth = Dielectric{1.5f};
+  const Bsdf rough = RoughDielectric{Microfacet{MicrofacetType::GGX, 0.3f, 0.3f}, 1.5f};
+  int refractions = 0, reflections = 0;
+  for (const Bsdf* b : {&smooth, &rough}) {
+    for (int i = 0; i < 400; ++i) {
+      const float cos_theta = (i % 2 == 0 ? 1.f : -1.f) * (0.05f + 0.9f * ((i * 37) % 100) / 100.f);
+      const Vec3 wo = direction(cos_theta, 0.7f * static_cast<float>(i));
+      const Point2 u{((i * 53) % 97 + 0.5f) / 97.f, ((i * 29) % 89 + 0.5f) / 89.f};
+      BsdfSample radiance, importance;
+      if (!sample(*b, wo, u, TransportMode::Radiance, radiance)) continue;
+      REQUIRE(sample(*b, wo, u, TransportMode::Importance, importance));
+      REQUIRE(radiance.eta == importance.eta);
+      const bool refracted = radiance.wi.z * wo.z < 0.f;
+      if (refracted) {
+        ++refractions;
+        CHECK_NEAR(radiance.eta, wo.z > 0.f ? 1.5f : 1.f / 1.5f, 1e-6f);
+      } else {
+        ++reflections;
+        CHECK(radiance.eta == 1.f);
+      }
+      CHECK_NEAR(radiance.weight[0] * radiance.eta * radiance.eta, importance.weight[0],
+                 1e-5f * std::max(1.f, importance.weight[0]));
+    }
+  }
+  CHECK(refractions > 300);
+  CHECK(reflections > 20);
 }
