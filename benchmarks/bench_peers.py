@@ -1,0 +1,205 @@
+"""dualight's path tracer against Mitsuba 3's ``path`` (scalar_rgb and llvm_ad_rgb) side by side
+(issue 23): the Cornell box, the caustic box and the door (64x64, ``max_depth`` and ``rr_depth``
+as their stored Mitsuba references), one thread and all threads, at equal time.
+
+Both renderers get the same scene (``Scene.to_mitsuba``), a box filter and independent samplers,
+so the comparison measures the implementations. Mitsuba has no time limit: each of its renders
+takes the spp a calibration render predicts fills the budget (after a warm-up render, so LLVM
+kernels are compiled); dualight renders with ``time_limit``. Runs are interleaved per seed.
+Efficiency is ``1 / (relMSE x seconds)`` (relMSE with the pbrt-v4 offset, reference noise
+removed, bench_bdpt.errors); a ratio above 1 means dualight reaches the same error sooner. Also
+samples per second, and relMSE x spp (error per sample, independent of speed).
+
+Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers_quick.json``.
+
+    python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 12 minutes
+    python benchmarks/bench_peers.py --quick         # 1 s budgets, 1 seed, the Cornell box
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import dualight
+from dualight import mitsuba as dmi
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+import bench_mlt  # noqa: E402
+from bench_bdpt import RESULTS, errors  # noqa: E402
+
+PEERS = ("scalar_rgb", "llvm_ad_rgb")
+NAMES = ("cornell", "caustics", "door")
+
+
+def render_dualight(
+    scene: dualight.Scene, budget: float, info: dict[str, Any], threads: int, seed: int
+) -> tuple[np.ndarray, float, int]:
+    """dualight's path tracer for ``budget`` seconds: image, seconds, spp."""
+    start = time.perf_counter()
+    image = dualight.render(
+        scene,
+        "path",
+        spp=None,
+        time_limit=budget,
+        max_depth=int(info["max_depth"]),
+        rr_depth=int(info["rr_depth"]),
+        seed=seed,
+        sampler="independent",
+        threads=threads,
+        progress=False,
+    )
+    return np.asarray(image), time.perf_counter() - start, int(image.stats["spp"])
+
+
+def mitsuba_scene(scene: dualight.Scene, variant: str, info: dict[str, Any]) -> Any:
+    """The scene loaded in Mitsuba ``variant`` with an independent sampler."""
+    import mitsuba as mi
+
+    dmi.variant(variant)
+    desc = scene.to_mitsuba(spp=1, max_depth=int(info["max_depth"]), rr_depth=int(info["rr_depth"]))
+    desc["sensor"]["sampler"]["type"] = "independent"
+    return mi.load_dict(desc)
+
+
+def render_mitsuba(mscene: Any, variant: str, spp: int, seed: int) -> tuple[np.ndarray, float]:
+    """Mitsuba's render of ``spp`` samples per pixel: image, seconds."""
+    import mitsuba as mi
+
+    dmi.variant(variant)
+    start = time.perf_counter()
+    image = np.asarray(mi.render(mscene, spp=spp, seed=seed), dtype=np.float32)
+    return image, time.perf_counter() - start
+
+
+def calibrate_mitsuba(mscene: Any, variant: str, budget: float) -> int:
+    """The spp that fills ``budget`` seconds, from a warm-up and a timed render of 16 spp
+    (doubled until it takes a tenth of the budget)."""
+    render_mitsuba(mscene, variant, 4, seed=999)  # JIT compile
+    spp = 16
+    while True:
+        _, seconds = render_mitsuba(mscene, variant, spp, seed=998)
+        if seconds >= 0.1 * budget or spp >= 1 << 16:
+            return max(1, int(round(spp * budget / seconds)))
+        spp *= 2
+
+
+def set_threads(threads: int) -> None:
+    """Mitsuba's (Dr.Jit's) thread pool; dualight takes ``threads`` per render."""
+    import drjit as dr
+
+    dr.set_thread_count(threads)
+
+
+def row(seconds: float, spp: int, error: dict[str, float]) -> dict[str, Any]:
+    return {"seconds": seconds, "spp": spp, **error}
+
+
+def run_scene(name: str, budget: float, seeds: int, threads: int) -> dict[str, Any]:
+    """Every renderer on scene ``name`` with ``threads`` threads, ``seeds`` times."""
+    _, scene, ref, ref_var, info = bench_mlt.prepare(name)
+    full = np.ones(ref.shape[:2], dtype=bool)
+    pixels = ref.shape[0] * ref.shape[1]
+    set_threads(threads)
+    mscenes = {v: mitsuba_scene(scene, v, info) for v in PEERS}
+    spps = {v: calibrate_mitsuba(mscenes[v], v, budget) for v in PEERS}
+    runs: dict[str, list[dict[str, Any]]] = {"dualight": [], **{v: [] for v in PEERS}}
+    for k in range(seeds):
+        seed = 60 + k
+        image, seconds, spp = render_dualight(scene, budget, info, threads, seed)
+        runs["dualight"].append(row(seconds, spp, errors(image, ref, ref_var, full)))
+        for v in PEERS:
+            image, seconds = render_mitsuba(mscenes[v], v, spps[v], seed)
+            runs[v].append(row(seconds, spps[v], errors(image, ref, ref_var, full)))
+    summary: dict[str, Any] = {}
+    for who, rows in runs.items():
+        relmse = float(np.mean([r["relmse"] for r in rows]))
+        seconds = float(np.mean([r["seconds"] for r in rows]))
+        spp = float(np.mean([r["spp"] for r in rows]))
+        summary[who] = {
+            "runs": rows,
+            "relmse": relmse,
+            "seconds": seconds,
+            "spp": spp,
+            "efficiency": 1.0 / (relmse * seconds),
+            "samples_per_second": pixels * spp / seconds,
+            "relmse_x_spp": relmse * spp,
+        }
+    summary["ratios"] = {
+        v: {
+            "efficiency": summary["dualight"]["efficiency"] / summary[v]["efficiency"],
+            "samples_per_second": summary["dualight"]["samples_per_second"]
+            / summary[v]["samples_per_second"],
+            "error_per_sample": summary["dualight"]["relmse_x_spp"] / summary[v]["relmse_x_spp"],
+        }
+        for v in PEERS
+    }
+    return summary
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--budget", type=float, default=8.0, help="seconds per render")
+    parser.add_argument("--seeds", type=int, default=2)
+    parser.add_argument("--scenes", type=str, default=",".join(NAMES))
+    parser.add_argument("--threads", type=str, default=f"1,{os.cpu_count() or 1}")
+    parser.add_argument("--quick", action="store_true", help="1 s, 1 seed, the Cornell box")
+    args = parser.parse_args()
+    if args.quick:
+        args.budget, args.seeds, args.scenes = 1.0, 1, "cornell"
+    names = [n for n in args.scenes.split(",") if n]
+    unknown = [n for n in names if n not in NAMES]
+    if unknown:
+        raise SystemExit(f"unknown scenes {unknown}; choose from {', '.join(NAMES)}")
+    thread_counts = sorted({int(t) for t in args.threads.split(",")})
+    started = time.perf_counter()
+    load = os.getloadavg()
+    results: dict[str, dict[str, Any]] = {}
+    for threads in thread_counts:
+        for name in names:
+            r = run_scene(name, args.budget, args.seeds, threads)
+            results.setdefault(f"threads_{threads}", {})[name] = r
+            for v, ratio in r["ratios"].items():
+                print(
+                    f"{threads} thread(s) {name:>9} dualight / {v:<11}: efficiency "
+                    f"x{ratio['efficiency']:.2f}, samples/s x{ratio['samples_per_second']:.2f}, "
+                    f"error per sample x{ratio['error_per_sample']:.2f}",
+                    flush=True,
+                )
+            rates = ", ".join(
+                f"{w} {r[w]['samples_per_second'] / 1e6:.2f} M" for w in ("dualight", *PEERS)
+            )
+            print(f"{'':>22}samples/s: {rates}", flush=True)
+    import mitsuba as mi
+
+    summary = {
+        "environment": {
+            "cpu_count": os.cpu_count(),
+            "platform": platform.platform(),
+            "python": platform.python_version(),
+            "mitsuba": mi.__version__,
+            "load_average_at_start": load,
+            "load_average_at_end": os.getloadavg(),
+            "wall_seconds": time.perf_counter() - started,
+        },
+        "budget_seconds": args.budget,
+        "seeds": args.seeds,
+        "results": results,
+    }
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    out = RESULTS / ("bench_peers_quick.json" if args.quick else "bench_peers.json")
+    out.write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
