@@ -12,9 +12,9 @@
 #include "guiding/guide_training.h"
 #include "guiding/guiding_trial.h"
 #include "guiding/guided_sampling.h"
-#include "pathspace/russian_roulette.h"
 #include "materials/shading_normal.h"
 #include "pathspace/pixel_driver.h"
+#include "pathspace/russian_roulette.h"
 #include "pathspace/shadow_ray.h"
 
 namespace dualight {

@@ -172,8 +172,6 @@ TEST_CASE("adjoint_roulette_keeps_the_expectation_and_its_bounds") {
   CHECK(low.scale == doctest::Approx(1.f / s.min_survival));
 }
 
-// A pass of a synthetic estimator: every pixel's samples are 1 + sigma * (a standard normal), and
-// the pass "took" seconds_per_sample per sample.
 // A Lambertian vertex (albedo 0.5) guided by a quadtree that learnt light from a 15-degree cone
 // around its normal, at the depth where Russian roulette starts: how often a path goes into the
 // cone and survives the roulette, guided (bsdf_fraction 0.5) and by the BSDF alone. The roulette on
@@ -218,6 +216,8 @@ TEST_CASE("russian_roulette_keeps_the_paths_the_guide_sent") {
                                                 << "), unguided " << plain_bsdf);
 }
 
+// A pass of a synthetic estimator: every pixel's samples are 1 + sigma * (a standard normal), and
+// the pass "took" seconds_per_sample per sample.
 static RenderStats synthetic_pass(Film& film, uint32_t spp, uint64_t seed, double sigma, double seconds_per_sample) {
   Pcg32 rng(seed, 7);
   for (size_t p = 0; p < film.pixel_count(); ++p) {
