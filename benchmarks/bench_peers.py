@@ -3,16 +3,19 @@
 as their stored Mitsuba references), one thread and all threads, at equal time.
 
 Both renderers get the same scene (``Scene.to_mitsuba``), a box filter and independent samplers,
-so the comparison measures the implementations. Mitsuba has no time limit: each of its renders
-takes the spp a calibration render predicts fills the budget (after a warm-up render, so LLVM
-kernels are compiled); dualight renders with ``time_limit``. Runs are interleaved per seed.
+so the comparison measures the implementations. Each comparison runs with Embree's robust mode
+(dualight's default) and without it (Mitsuba 3's default), in both renderers alike
+(``Scene.robust_intersections``, Mitsuba's ``embree_use_robust_intersections``). Mitsuba has
+no time limit: each of its renders takes the spp a calibration render predicts fills the budget
+(after a warm-up render, so LLVM kernels are compiled); dualight renders with ``time_limit``.
+Runs are interleaved per seed.
 Efficiency is ``1 / (relMSE x seconds)`` (relMSE with the pbrt-v4 offset, reference noise
 removed, bench_bdpt.errors); a ratio above 1 means dualight reaches the same error sooner. Also
 samples per second, and relMSE x spp (error per sample, independent of speed).
 
 Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers_quick.json``.
 
-    python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 12 minutes
+    python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 20 minutes
     python benchmarks/bench_peers.py --quick         # 1 s budgets, 1 seed, the Cornell box
 """
 
@@ -104,9 +107,11 @@ def row(seconds: float, spp: int, error: dict[str, float]) -> dict[str, Any]:
     return {"seconds": seconds, "spp": spp, **error}
 
 
-def run_scene(name: str, budget: float, seeds: int, threads: int) -> dict[str, Any]:
-    """Every renderer on scene ``name`` with ``threads`` threads, ``seeds`` times."""
+def run_scene(name: str, budget: float, seeds: int, threads: int, robust: bool) -> dict[str, Any]:
+    """Every renderer on scene ``name`` with ``threads`` threads, ``seeds`` times, with
+    Embree's robust mode on or off."""
     _, scene, ref, ref_var, info = bench_mlt.prepare(name)
+    scene.robust_intersections = robust
     full = np.ones(ref.shape[:2], dtype=bool)
     pixels = ref.shape[0] * ref.shape[1]
     set_threads(threads)
@@ -152,6 +157,9 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=2)
     parser.add_argument("--scenes", type=str, default=",".join(NAMES))
     parser.add_argument("--threads", type=str, default=f"1,{os.cpu_count() or 1}")
+    parser.add_argument(
+        "--intersections", type=str, default="robust,fast", help="Embree modes: robust, fast"
+    )
     parser.add_argument("--quick", action="store_true", help="1 s, 1 seed, the Cornell box")
     args = parser.parse_args()
     if args.quick:
@@ -161,16 +169,19 @@ def main() -> None:
     if unknown:
         raise SystemExit(f"unknown scenes {unknown}; choose from {', '.join(NAMES)}")
     thread_counts = sorted({int(t) for t in args.threads.split(",")})
+    modes = [m for m in args.intersections.split(",") if m]
+    if not modes or any(m not in ("robust", "fast") for m in modes):
+        raise SystemExit(f"--intersections takes robust and/or fast, got {args.intersections!r}")
     started = time.perf_counter()
     load = os.getloadavg()
     results: dict[str, dict[str, Any]] = {}
     for threads in thread_counts:
-        for name in names:
-            r = run_scene(name, args.budget, args.seeds, threads)
-            results.setdefault(f"threads_{threads}", {})[name] = r
+        for name, mode in [(n, m) for n in names for m in modes]:
+            r = run_scene(name, args.budget, args.seeds, threads, mode == "robust")
+            results.setdefault(f"threads_{threads}", {}).setdefault(mode, {})[name] = r
             for v, ratio in r["ratios"].items():
                 print(
-                    f"{threads} thread(s) {name:>9} dualight / {v:<11}: efficiency "
+                    f"{threads} thread(s) {name:>9} {mode:>6} dualight / {v:<11}: efficiency "
                     f"x{ratio['efficiency']:.2f}, samples/s x{ratio['samples_per_second']:.2f}, "
                     f"error per sample x{ratio['error_per_sample']:.2f}",
                     flush=True,
@@ -178,7 +189,7 @@ def main() -> None:
             rates = ", ".join(
                 f"{w} {r[w]['samples_per_second'] / 1e6:.2f} M" for w in ("dualight", *PEERS)
             )
-            print(f"{'':>22}samples/s: {rates}", flush=True)
+            print(f"{'':>29}samples/s: {rates}", flush=True)
     import mitsuba as mi
 
     summary = {

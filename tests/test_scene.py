@@ -362,3 +362,55 @@ def test_shading_normals_are_unit_read_only_and_optional() -> None:
     np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0)
     np.testing.assert_allclose(n[1], [0, 2**-0.5, 2**-0.5])
     assert not n.flags.writeable
+
+
+def test_robust_intersections_reach_the_core_pickles_and_mitsuba(tiny_scene) -> None:
+    import pickle
+
+    with pytest.raises(TypeError, match="robust_intersections must be a bool"):
+        dualight.Scene(robust_intersections=1)  # type: ignore[arg-type]
+    assert tiny_scene.robust_intersections is True  # dualight's default; Mitsuba 3's is False
+    with pytest.raises(TypeError, match="robust_intersections must be a bool"):
+        tiny_scene.robust_intersections = "no"  # type: ignore[assignment]
+    for robust in (False, True):
+        scene = dualight.Scene(tiny_scene.camera, robust_intersections=robust)
+        scene.add_mesh(QUAD_V, QUAD_F)
+        assert scene.robust_intersections is robust
+        assert scene._compile().robust_intersections is robust
+        assert pickle.loads(pickle.dumps(scene))._compile().robust_intersections is robust
+        patches = dualight.radiosity.PatchMesh(scene, max_area=0.25)
+        assert patches._compile().robust_intersections is robust
+        scene.robust_intersections = not robust  # the setter recompiles both
+        assert scene._compile().robust_intersections is not robust
+        assert patches._compile().robust_intersections is not robust
+
+
+@pytest.mark.mitsuba
+def test_robust_intersections_map_to_mitsubas_scene_property(tiny_scene) -> None:
+    pytest.importorskip("mitsuba")
+    for robust in (False, True):
+        tiny_scene.robust_intersections = robust
+        exported = tiny_scene.to_mitsuba()
+        assert exported["embree_use_robust_intersections"] is robust
+
+
+@pytest.mark.parametrize("light_scale", [1.0, 1.1])
+def test_robust_and_fast_intersections_render_the_same_image(light_scale: float) -> None:
+    # Embree's fast mode lets a few rays through where triangles meet (test_stress's closed
+    # cube sees 1e-4 of the room's light); in the Cornell box that is far below the noise. The
+    # control (the light 10 % brighter in the robust render) fails the same test.
+    fast = dualight.scenes.cornell_box(resolution=(32, 32))
+    fast.robust_intersections = False
+    robust = dualight.scenes.cornell_box(resolution=(32, 32), light_scale=light_scale)
+    a = dualight.render(fast, "path", spp=512, seed=1, progress=False)
+    b = dualight.render(robust, "path", spp=512, seed=2, progress=False)
+    result = dualight.metrics.welch_test(a, a.variance, b, b.variance, block=4)
+    assert (result.pass_fraction == 1.0) == (light_scale == 1.0), str(result)
+
+
+@pytest.mark.parametrize(("prop", "robust"), [("", True), ("false", False), ("true", True)])
+def test_robust_intersections_are_read_from_mitsuba_xml(tmp_path, prop: str, robust: bool) -> None:
+    line = f'<boolean name="embree_use_robust_intersections" value="{prop}"/>' if prop else ""
+    path = tmp_path / "scene.xml"
+    path.write_text(f'<scene version="3.0.0">{line}<shape type="rectangle"/></scene>')
+    assert dualight.load_mitsuba_xml(path).robust_intersections is robust

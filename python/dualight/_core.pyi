@@ -11,9 +11,9 @@ class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
     """
-    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, uvs: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, textures: collections.abc.Sequence[collections.abc.Sequence[tuple[str, ...]]] | None = None, emitters: collections.abc.Sequence[...] | None = None, emission_textures: collections.abc.Sequence[... | None] | None = None) -> None:
+    def __init__(self, positions: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], material_of: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32], reflectance: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], emission: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], *, kind: typing.Annotated[numpy.typing.ArrayLike, numpy.uint32] | None = None, ior: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, bsdfs: collections.abc.Sequence[...] | None = None, normals: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, uvs: typing.Annotated[numpy.typing.ArrayLike, numpy.float32] | None = None, textures: collections.abc.Sequence[collections.abc.Sequence[tuple[str, ...]]] | None = None, emitters: collections.abc.Sequence[...] | None = None, emission_textures: collections.abc.Sequence[... | None] | None = None, robust_intersections: bool = True) -> None:
         """
-        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface coordinates, one row per position (NaN for meshes without). textures: per material, a list of (BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter). emission_textures: per material, the Texture of its emitted radiance (an area light whose radiance varies over its surface) or None.
+        Triangles with one material per row of reflectance and emission. The BSDFs: bsdfs (one dualight._core.Bsdf per material), or kind (BsdfKind values, default lambertian) and ior (a dielectric's interior IOR) as optional per-material arrays with reflectance the diffuse albedo or the mirror's reflectance. normals: optional shading normals, one row per position; a triangle is smooth-shaded when its three vertices have non-zero normals. uvs: optional surface coordinates, one row per position (NaN for meshes without). textures: per material, a list of (BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter). emission_textures: per material, the Texture of its emitted radiance (an area light whose radiance varies over its surface) or None. robust_intersections: Embree's robust mode (no ray slips through where triangles meet; off, 10-19 % more samples per second but leaky, is Mitsuba 3's default).
         """
     def encloses(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(3)"]) -> bool:
         """
@@ -39,6 +39,9 @@ class Scene:
         """
         Whether a path can hit an emitter (an area light or an environment); false when every emitter is a point, spot or directional light.
         """
+    @property
+    def robust_intersections(self) -> bool:
+        ...
     @property
     def triangle_count(self) -> int:
         ...

@@ -338,6 +338,8 @@ def scene_dict(
             "sampler": {"type": "independent", "sample_count": int(spp)},
         },
     }
+    # The same intersections: Mitsuba's default (off) leaks through closed meshes' edges.
+    out["embree_use_robust_intersections"] = scene.robust_intersections
     used = set(out)
     for mesh in scene.meshes:
         key = _key(mesh.name, used)

@@ -354,6 +354,12 @@ def _freezes_scene(function: Callable[_P, _R]) -> Callable[_P, _R]:
     return wrapper
 
 
+def _checked_bool(value: Any, name: str) -> bool:
+    if not isinstance(value, bool):
+        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+    return value
+
+
 class Scene:
     """A camera and triangle meshes with materials, some of them emitters.
 
@@ -364,12 +370,25 @@ class Scene:
     >>> scene.add_mesh(light_v, light_f, reflectance=(0, 0, 0), emission=(10, 10, 10))
     >>> scene.add_mesh(ball_v, ball_f, material=dualight.Dielectric(ior=1.5), name="glass")
     >>> image = dualight.render(scene, spp=64)
+
+    Parameters
+    ----------
+    camera : Camera, optional
+        The camera renders and solves use (else they need ``camera=``).
+    robust_intersections : bool, optional
+        Embree's robust mode (the default): ray queries without the optimisations that lower
+        its arithmetic accuracy, so that no ray slips through where triangles meet. ``False``
+        renders 10-19 % more samples per second, but light leaks through the edges of closed
+        meshes (a camera inside a closed cube within the lit Cornell box saw pixels of 1.4e-4,
+        where the cube lit inside averages 2, instead of black). It is Mitsuba 3's scene property
+        ``embree_use_robust_intersections``, whose default is ``False``.
     """
 
-    def __init__(self, camera: Camera | None = None) -> None:
+    def __init__(self, camera: Camera | None = None, *, robust_intersections: bool = True) -> None:
         if camera is not None and not isinstance(camera, Camera):
             raise TypeError(f"camera must be a dualight.Camera, got {type(camera).__name__}")
         self._camera = camera
+        self._robust_intersections = _checked_bool(robust_intersections, "robust_intersections")
         self._meshes: list[Mesh] = []
         self._emitters: list[Emitter] = []
         self._compiled: _core.Scene | None = None
@@ -388,7 +407,8 @@ class Scene:
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
-        self.__dict__.update({"_checked_facing": set(), "_emitters": [], **state})
+        defaults = {"_checked_facing": set(), "_emitters": [], "_robust_intersections": True}
+        self.__dict__.update({**defaults, **state})
         self._lock = threading.Lock()
         self._users = 0
         for mesh in self._meshes:
@@ -408,6 +428,21 @@ class Scene:
         with self._lock:
             self._refuse_while_in_use("camera")
             self._camera = camera
+
+    @property
+    def robust_intersections(self) -> bool:
+        """Whether ray queries use Embree's robust mode (see the class's parameters); set it
+        to change that for the renders and solves started after."""
+        return self._robust_intersections
+
+    @robust_intersections.setter
+    def robust_intersections(self, robust: bool) -> None:
+        robust = _checked_bool(robust, "robust_intersections")
+        with self._lock:
+            self._refuse_while_in_use("robust_intersections")
+            if robust != self._robust_intersections:
+                self._robust_intersections = robust
+                self._compiled = None
 
     @property
     def meshes(self) -> tuple[Mesh, ...]:
@@ -736,6 +771,7 @@ class Scene:
                 textures=self._material_textures(),
                 emitters=[e._core_emitter() for e in self._emitters] or None,
                 emission_textures=self._emission_textures(),
+                robust_intersections=self._robust_intersections,
             )
         return self._compiled
 

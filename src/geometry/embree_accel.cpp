@@ -89,7 +89,8 @@ struct EmbreeAccel::Impl {
   SceneHandle scene;
 };
 
-EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles)
+EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                         bool robust)
     : impl_(std::make_unique<Impl>()) {
   impl_->device.reset(rtcNewDevice(nullptr));
   if (!impl_->device) throw std::runtime_error("could not create an Embree device");
@@ -98,10 +99,11 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
   RTCScene scene = impl_->scene.get();
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
 #if DUALIGHT_EMBREE4
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS);
+  const int filter_flag = RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS;
 #else
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  const int filter_flag = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
 #endif
+  rtcSetSceneFlags(scene, static_cast<RTCSceneFlags>(filter_flag | (robust ? RTC_SCENE_FLAG_ROBUST : 0)));
 
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const size_t n_vertices = positions.size() / 3, n_triangles = triangles.size() / 3;

@@ -45,7 +45,7 @@ AreaEmitter Scene::area_emitter(uint32_t prim) const {
 
 Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
              std::vector<Material> materials, std::vector<Emitter> emitters, std::vector<float> normals,
-             std::vector<float> uvs)
+             std::vector<float> uvs, bool robust_intersections)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
       material_of_(std::move(material_of)),
@@ -128,7 +128,8 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     used.mixed_delta = used.mixed_delta || mixes_delta(f);
   }
   features_ = compute_scene_features(positions_, triangles_, normal_, used, emitter_triangles);
-  accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_);
+  robust_intersections_ = robust_intersections;
+  accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_, robust_intersections);
 }
 
 void Scene::set_vertex_normals(const std::vector<float>& normals) {

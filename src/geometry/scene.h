@@ -69,12 +69,12 @@ class Scene {
   // vertices all have non-zero normals is smooth-shaded (its shading normal interpolates them,
   // Phong's normal interpolation) and any zero normal keeps the triangle flat; uvs: empty, or
   // (u, v) per vertex, NaN where a mesh has none (its triangles take their barycentrics, as in
-  // Mitsuba). Throws
+  // Mitsuba); robust_intersections: Embree's robust mode (EmbreeAccel). Throws
   // std::invalid_argument on any malformed input (the Python layer validates first, so these
   // checks guard the C++ API itself).
   Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std::vector<uint32_t> material_of,
         std::vector<Material> materials, std::vector<Emitter> emitters = {}, std::vector<float> normals = {},
-        std::vector<float> uvs = {});
+        std::vector<float> uvs = {}, bool robust_intersections = true);
 
   size_t triangle_count() const { return area_.size(); }
   Vec3 vertex(uint32_t prim, int corner) const {
@@ -137,6 +137,7 @@ class Scene {
   Vec3 beyond(const Vec3& p, const Vec3& w) const { return p + w * reach_beyond(sphere_, p); }
   // What the scene holds (specular, closed, convex enclosure, ...), computed at construction.
   const SceneFeatures& features() const { return features_; }
+  bool robust_intersections() const { return robust_intersections_; }
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
@@ -179,6 +180,7 @@ class Scene {
   float offset_scale_ = 1.f;
   float eye_clearance_ = 0.f;
   SceneFeatures features_;
+  bool robust_intersections_ = true;
   std::unique_ptr<EmbreeAccel> accel_;
 };
 

@@ -126,7 +126,9 @@ TEST_CASE("visibility_from_and_to_points_on_the_edge_where_two_walls_meet") {
   // Embree reported the floor (t = 0). Both lost light in a furnace (issue 18). A wall z = 0.95
   // standing between still blocks them all, and so does the floor for a point below it: the
   // edge's wall is reached from there only through the floor (a closed cell's inner edge seen
-  // from outside, which leaked while the target's plane alone was asked).
+  // from outside, which leaked while the target's plane alone was asked). That last case, a
+  // segment reaching the floor exactly on its boundary edge, holds in Embree's robust mode
+  // only: its fast mode (Mitsuba 3's default) let 741 of these 1521 through.
   const Material m{Lambertian{Color(0.5f)}, Color(0.f)};
   const std::vector<float> room{0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0,   // floor, normal +y
                                 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1,   // wall x = 0, normal +x
@@ -136,26 +138,30 @@ TEST_CASE("visibility_from_and_to_points_on_the_edge_where_two_walls_meet") {
   walled.insert(walled.end(), {0, 0, 0.95f, 1, 0, 0.95f, 1, 1, 0.95f, 0, 1, 0.95f});
   std::vector<uint32_t> walled_quads = quads;
   walled_quads.insert(walled_quads.end(), {12, 13, 14, 12, 14, 15});
-  const Scene open(room, quads, {0, 0, 0, 0, 0, 0}, {m});
-  const Scene blocked(walled, walled_quads, {0, 0, 0, 0, 0, 0, 0, 0}, {m});
-  int reached = 0, hidden = 0, tried = 0, tried_hidden = 0;
-  for (int i = 1; i < 40; ++i) {
-    for (int j = 1; j < 40; ++j) {
-      const Vec3 edge(0.f, 0.f, 0.0237f * static_cast<float>(j) + 0.001f * static_cast<float>(i % 7));
-      // On the back wall's first triangle (y > x), prim 4.
-      const Vec3 back(0.05f + 0.005f * static_cast<float>(i), 0.3f + 0.015f * static_cast<float>(j), 1.f);
-      tried += 2;
-      reached += open.visible(back, Vec3(0, 0, -1), edge, 3);  // to the edge, on the wall's prim 3
-      reached += open.visible(edge, Vec3(1, 0, 0), back, 4, 3);  // from the edge, a vertex on prim 3
-      hidden += !blocked.visible(back, Vec3(0, 0, -1), edge, 3);
-      hidden += !blocked.visible(edge, Vec3(1, 0, 0), back, 4, 3);
-      const Vec3 below(0.3f + 0.0171f * static_cast<float>(i), -0.5f, 0.0123f * static_cast<float>(j));
-      hidden += !open.visible(below, Vec3(0, -1, 0), edge, 3);
-      ++tried_hidden;
+  for (const bool robust : {false, true}) {
+    CAPTURE(robust);
+    const Scene open(room, quads, {0, 0, 0, 0, 0, 0}, {m}, {}, {}, {}, robust);
+    const Scene blocked(walled, walled_quads, {0, 0, 0, 0, 0, 0, 0, 0}, {m}, {}, {}, {}, robust);
+    int reached = 0, hidden = 0, tried = 0, hidden_below = 0, tried_below = 0;
+    for (int i = 1; i < 40; ++i) {
+      for (int j = 1; j < 40; ++j) {
+        const Vec3 edge(0.f, 0.f, 0.0237f * static_cast<float>(j) + 0.001f * static_cast<float>(i % 7));
+        // On the back wall's first triangle (y > x), prim 4.
+        const Vec3 back(0.05f + 0.005f * static_cast<float>(i), 0.3f + 0.015f * static_cast<float>(j), 1.f);
+        tried += 2;
+        reached += open.visible(back, Vec3(0, 0, -1), edge, 3);  // to the edge, on the wall's prim 3
+        reached += open.visible(edge, Vec3(1, 0, 0), back, 4, 3);  // from the edge, a vertex on prim 3
+        hidden += !blocked.visible(back, Vec3(0, 0, -1), edge, 3);
+        hidden += !blocked.visible(edge, Vec3(1, 0, 0), back, 4, 3);
+        const Vec3 below(0.3f + 0.0171f * static_cast<float>(i), -0.5f, 0.0123f * static_cast<float>(j));
+        hidden_below += !open.visible(below, Vec3(0, -1, 0), edge, 3);
+        ++tried_below;
+      }
     }
+    CHECK(hidden == tried);
+    CHECK(reached == tried);
+    if (robust) CHECK(hidden_below == tried_below);
   }
-  CHECK(hidden == tried + tried_hidden);
-  CHECK(reached == tried);
 }
 
 TEST_CASE("a_ray_leaving_the_plane_it_starts_in_does_not_hit_that_plane_at_t_zero") {

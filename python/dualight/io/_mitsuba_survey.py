@@ -30,6 +30,8 @@ from dualight.io._mitsuba_values import (
     _unsupported_type,
 )
 
+# The one property of the scene itself that is read: Embree's robust mode (Mitsuba 3's name).
+ROBUST_INTERSECTIONS = "embree_use_robust_intersections"
 _TOP_LEVEL = (
     "default",
     "integrator",
@@ -116,6 +118,8 @@ class _Survey:
             return self.sensor(element, where)
         elif not self.build or tag == "integrator":
             return element  # integrators are read by read_mitsuba_settings, which says so
+        elif tag == "boolean" and element.get("name") == ROBUST_INTERSECTIONS:
+            return element  # the scene's own property: Scene(robust_intersections=...)
         elif tag not in _TOP_LEVEL:
             supported = ", ".join(t for t in _TOP_LEVEL if t != "include")
             reason = f"element not supported (supported at the top level: {supported})"

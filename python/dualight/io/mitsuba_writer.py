@@ -203,6 +203,8 @@ def save_mitsuba_xml(
     far_clip = max(4.0 * float(np.max(np.linalg.norm(corners - cam.origin, axis=1))), 1e-3)
 
     root = ET.Element("scene", version="3.0.0")
+    robust = "true" if scene.robust_intersections else "false"
+    _element(root, "boolean", name="embree_use_robust_intersections", value=robust)
     integrator = _element(root, "integrator", type="path")
     _element(integrator, "integer", name="max_depth", value=int(max_depth))
     _element(integrator, "integer", name="rr_depth", value=int(rr_depth))

@@ -16,7 +16,8 @@ from dualight.io._mitsuba_emitters import _emitter
 from dualight.io._mitsuba_materials import _bsdf, _texture
 from dualight.io._mitsuba_sensor import _integrator, _sensor
 from dualight.io._mitsuba_shapes import _add_meshes, _shape, _shapegroup
-from dualight.io._mitsuba_survey import _Survey
+from dualight.io._mitsuba_survey import ROBUST_INTERSECTIONS, _Survey
+from dualight.io._mitsuba_values import _boolean
 from dualight.scene import Scene
 
 __all__ = ["load_mitsuba_xml", "read_mitsuba_settings"]
@@ -97,9 +98,9 @@ class _Reader:
     """Reads a surveyed scene's top-level elements (through a _TopLevel, so that a reference
     may come before what it names) into a scene and its settings."""
 
-    def __init__(self, ctx: _Context, build: bool, sphere_subdivisions: int) -> None:
+    def __init__(self, ctx: _Context, build: bool, sphere_subdivisions: int, robust: bool) -> None:
         self.ctx, self.build, self.sphere_subdivisions = ctx, build, sphere_subdivisions
-        self.scene = Scene()
+        self.scene = Scene(robust_intersections=robust)
         self.settings: dict[str, Any] = {}
         self.shapes = 0
 
@@ -155,7 +156,9 @@ def _parse(
     survey = _Survey(ctx, strict, build)
     survey.scene(root)
     survey.report()
-    reader = _Reader(ctx, build, sphere_subdivisions)
+    robust = [e for e in root if e.tag == "boolean" and e.get("name") == ROBUST_INTERSECTIONS]
+    robust_last = _boolean(ctx, robust[-1], True) if robust else True
+    reader = _Reader(ctx, build, sphere_subdivisions, robust_last)
     ctx.top = _TopLevel(ctx, root, reader.read)
     for element in list(root):
         ctx.top.visit(element)
@@ -211,7 +214,10 @@ def load_mitsuba_xml(
     * ``<sensor type="perspective">`` with ``fov``, ``fov_axis`` (x, y, diagonal, smaller,
       larger; converted to dualight's fov along x), ``to_world`` (rotation and translation);
       its ``<film type="hdrfilm">`` ``width`` and ``height``; its sampler's ``sample_count``
-      and the ``<integrator>`` settings are read by :func:`read_mitsuba_settings`.
+      and the ``<integrator>`` settings are read by :func:`read_mitsuba_settings`;
+    * the scene's ``<boolean name="embree_use_robust_intersections">``, as
+      ``Scene(robust_intersections=...)``; without it, dualight's default (``True``, where
+      Mitsuba's is ``False``: see :class:`dualight.Scene`).
 
     Approximations, each with a ``UserWarning``: ``sample_visible=false`` on a rough BSDF is
     ignored (dualight samples visible normals: the same BSDF, other noise); a pixel filter

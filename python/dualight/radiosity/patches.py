@@ -381,7 +381,8 @@ class PatchMesh:
 
     def _compile(self) -> _core.Scene:
         """The patches as an Embree scene: triangle k of it is patch k."""
-        if self._compiled is None:
+        robust = self._scene.robust_intersections
+        if self._compiled is None or self._compiled.robust_intersections != robust:
             from dualight import _core
 
             n_mesh = len(self._scene.meshes)
@@ -393,6 +394,7 @@ class PatchMesh:
                 self.mesh_index.astype(np.uint32),
                 rho.reshape(n_mesh, 3),
                 Le.reshape(n_mesh, 3),
+                robust_intersections=robust,
             )
         return self._compiled
 
@@ -426,6 +428,7 @@ class PatchMesh:
             np.zeros((n_mesh, 3), np.float32),
             np.zeros((n_mesh, 3), np.float32),
             emitters=[e._core_emitter() for e in self._scene.emitters],
+            robust_intersections=self._scene.robust_intersections,
         )
         return _core.direct_irradiance(lit, points_per_axis, env_strata, seed, threads, progress)
 
