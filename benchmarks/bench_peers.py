@@ -15,7 +15,7 @@ samples per second, and relMSE x spp (error per sample, independent of speed).
 
 Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers_quick.json``.
 
-    python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 20 minutes
+    python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 11 minutes
     python benchmarks/bench_peers.py --quick         # 1 s budgets, 1 seed, the Cornell box
 """
 
