@@ -432,7 +432,8 @@ class Scene:
     @property
     def robust_intersections(self) -> bool:
         """Whether ray queries use Embree's robust mode (see the class's parameters); set it
-        to change that for the renders and solves started after."""
+        to change that for the renders and solves started after (a
+        :class:`~dualight.radiosity.HierarchicalSolver` keeps the scene it was built on)."""
         return self._robust_intersections
 
     @robust_intersections.setter

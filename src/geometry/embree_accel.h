@@ -28,7 +28,7 @@ class EmbreeAccel {
   // positions: 3 floats per vertex; triangles: 3 indices per triangle. Copied into Embree buffers.
   // robust: Embree's robust mode (RTC_SCENE_FLAG_ROBUST), which avoids the optimisations that
   // lower its arithmetic accuracy: no ray slips through where triangles meet. Without it rays
-  // trace 20-27 % faster but leak through the edges of closed meshes (Mitsuba 3's default, its
+  // trace 24-30 % faster but leak through the edges of closed meshes (Mitsuba 3's default, its
   // scene's embree_use_robust_intersections = false).
   EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles, bool robust = true);
   ~EmbreeAccel();
