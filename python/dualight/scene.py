@@ -378,7 +378,7 @@ class Scene:
     robust_intersections : bool, optional
         Embree's robust mode (the default): ray queries without the optimisations that lower
         its arithmetic accuracy, so that no ray slips through where triangles meet. ``False``
-        renders 10-19 % more samples per second, but light leaks through the edges of closed
+        renders 8-19 % more samples per second, but light leaks through the edges of closed
         meshes (a camera inside a closed cube within the lit Cornell box saw pixels of 1.4e-4,
         where the cube lit inside averages 2, instead of black). It is Mitsuba 3's scene property
         ``embree_use_robust_intersections``, whose default is ``False``.

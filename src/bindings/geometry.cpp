@@ -122,7 +122,7 @@ void bind_geometry(py::module_& m) {
            "(BSDF parameter name, Texture). emitters: point and spot lights (dualight._core.Emitter). "
            "emission_textures: per material, the Texture of its emitted radiance (an area light whose "
            "radiance varies over its surface) or None. robust_intersections: Embree's robust mode (no ray "
-           "slips through where triangles meet; off, 10-19 % more samples per second but leaky, is Mitsuba "
+           "slips through where triangles meet; off, 8-19 % more samples per second but leaky, is Mitsuba "
            "3's default).")
       .def_property_readonly("triangle_count", &Scene::triangle_count)
       .def_property_readonly("robust_intersections", &Scene::robust_intersections)
