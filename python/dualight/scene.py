@@ -356,7 +356,7 @@ def _freezes_scene(function: Callable[_P, _R]) -> Callable[_P, _R]:
 
 def _checked_bool(value: Any, name: str) -> bool:
     if not isinstance(value, bool):
-        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+        raise TypeError(f"{name} must be True or False, got {value!r}")
     return value
 
 
