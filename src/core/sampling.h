@@ -13,21 +13,27 @@ struct Point2 {
   float u, v;
 };
 
+// sin x and cos x for |x| <= pi / 4, within 1 ulp of the correctly rounded values: Cephes'
+// sinf and cosf polynomials [Moshier 1992], without their range reduction (the concentric map's
+// angles need none). Inline, where std::sin and std::cos call libm.
+inline void sincos_within_pi_over_4(float x, float& s, float& c) {
+  const float z = x * x;
+  s = x + x * z * (-1.6666654611e-1f + z * (8.3321608736e-3f + z * -1.9515295891e-4f));
+  c = 1.f - 0.5f * z + z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
+}
+
 // Uniform points on the unit disk, Shirley and Chiu's concentric map [Shirley-Chiu 1997];
-// density 1 / pi.
+// density 1 / pi. In the sectors around the x axis the angle is (pi / 4) b / a; around the y
+// axis it is pi / 2 - (pi / 4) a / b, whose cosine and sine are the sine and cosine of
+// (pi / 4) a / b.
 inline Point2 square_to_uniform_disk(Point2 p) {
   const float a = 2.f * p.u - 1.f, b = 2.f * p.v - 1.f;
-  float r = 0.f, phi = 0.f;
-  if (a != 0.f || b != 0.f) {
-    if (a * a > b * b) {
-      r = a;
-      phi = (kPi / 4.f) * (b / a);
-    } else {
-      r = b;
-      phi = (kPi / 2.f) - (kPi / 4.f) * (a / b);
-    }
-  }
-  return {r * std::cos(phi), r * std::sin(phi)};
+  if (a == 0.f && b == 0.f) return {0.f, 0.f};
+  const bool x_sector = a * a > b * b;
+  const float r = x_sector ? a : b;
+  float s, c;
+  sincos_within_pi_over_4((kPi / 4.f) * ((x_sector ? b : a) / r), s, c);
+  return x_sector ? Point2{r * c, r * s} : Point2{r * s, r * c};
 }
 
 // Cosine-weighted hemisphere around +z (Malley's method on the concentric disk).

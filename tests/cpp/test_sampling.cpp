@@ -33,6 +33,36 @@ TEST_CASE("cosine_hemisphere_moments_match_its_pdf") {
   CHECK(cosine_hemisphere_pdf(-0.1f) == 0.f);
 }
 
+TEST_CASE("concentric_disk_matches_its_trigonometric_definition") {
+  // The inline sine and cosine against double-precision std::sin and std::cos of Shirley and
+  // Chiu's angle, on a grid through every sector and across the sector boundaries (|a| = |b|).
+  const int n = 401;
+  double worst = 0.0, worst_radius = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Point2 u{static_cast<float>(i) / (n - 1), static_cast<float>(j) / (n - 1)};
+      const double a = 2.0 * u.u - 1.0, b = 2.0 * u.v - 1.0;
+      double x = 0.0, y = 0.0;
+      if (a != 0.0 || b != 0.0) {
+        const bool x_sector = a * a > b * b;
+        const double r = x_sector ? a : b;
+        const double phi = x_sector ? (kPi / 4.0) * (b / a) : kPi / 2.0 - (kPi / 4.0) * (a / b);
+        x = r * std::cos(phi);
+        y = r * std::sin(phi);
+      }
+      const Point2 d = square_to_uniform_disk(u);
+      worst = std::max({worst, std::abs(d.u - x), std::abs(d.v - y)});
+      worst_radius = std::max(worst_radius, std::hypot(static_cast<double>(d.u), static_cast<double>(d.v)));
+    }
+  }
+  CHECK(worst < 3e-7);
+  CHECK(worst_radius < 1.0 + 3e-7);
+  float s = 0.f, c = 0.f;
+  sincos_within_pi_over_4(kPi / 4.f, s, c);
+  CHECK_NEAR(s, std::sin(kPi / 4.0), 1e-7);
+  CHECK_NEAR(c, std::cos(kPi / 4.0), 1e-7);
+}
+
 TEST_CASE("uniform_triangle_barycentrics_are_uniform") {
   // The mean of uniform barycentrics is the centroid (1/3, 1/3); all inside the triangle.
   Pcg32 rng(3, 4);
