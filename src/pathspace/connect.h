@@ -82,7 +82,7 @@ inline Color connect_to_camera(const Scene& scene, const PinholeCamera& camera, 
   const float dist2 = dot(d, d);
   const Vec3 w = d / std::sqrt(dist2);
   const Color f = qs.type == VertexType::Light ? emitted_towards(qs, camera.origin())
-                                               : scattering(qs, camera.origin(), TransportMode::Importance);
+                                               : scattering_along(qs, w, TransportMode::Importance);
   const Color L = qs.beta * f * (camera.importance(-w) * abs_cos(qs, w) / dist2);
   if (is_black(L)) {
     ++counters.skipped_connections;
@@ -144,8 +144,9 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   }
   const Vec3 w = d / std::sqrt(dist2);
   const float G = std::abs(dot(pt.n, w)) * abs_cos(qs, w) / dist2;
-  const Color fq = s == 1 ? emitted_towards(qs, pt.p) : scattering(qs, pt.p, TransportMode::Importance);
-  const Color L = qs.beta * fq * pt.beta * scattering(pt, qs.p, TransportMode::Radiance) * G;
+  // w is normalize(qs.p - pt.p) to the bit, and -w normalize(pt.p - qs.p): both ends scatter along them.
+  const Color fq = s == 1 ? emitted_towards(qs, pt.p) : scattering_along(qs, -w, TransportMode::Importance);
+  const Color L = qs.beta * fq * pt.beta * scattering_along(pt, w, TransportMode::Radiance) * G;
   if (is_black(L)) {
     ++counters.skipped_connections;
     return L;

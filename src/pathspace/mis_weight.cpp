@@ -10,41 +10,49 @@ namespace {
 // importance guide's (a light subpath continuing).
 enum class GuideKind { Radiance, Importance };
 
-// pdf_area (path.h) where surface vertex v samples a mixture of its BSDF and a guide:
+// pdf_area_along (path.h) where surface vertex v samples a mixture of its BSDF and a guide:
 // mixture(b, pdf_bsdf, w) is the mixture's solid-angle density of w given the BSDF's.
 template <class Mixture>
-float mixture_pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, const Mixture& mixture) {
-  const Vec3 w = direction(v, next);
-  const float pdf_w = with_bsdf(v, [&](const Bsdf& b) {
-    return mixture(b, pdf_w_world(b, v.ns, direction(v, *prev), w, TransportMode::Radiance), w);
-  });
+float mixture_pdf_area(const Vertex& v, const Vec3& wo, const Vec3& w, const Vertex& next, const Mixture& mixture) {
+  const float pdf_w =
+      with_bsdf(v, [&](const Bsdf& b) { return mixture(b, pdf_w_world(b, v.ns, wo, w, TransportMode::Radiance), w); });
   return solid_angle_to_area(pdf_w, v, next);
+}
+
+// pdf_area_along with `guide` (null: none) mixed in at a surface vertex.
+float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& wo, const Vec3& w, const Vertex& next,
+                     const SdTree* guide) {
+  if (guide == nullptr || v.type != VertexType::Surface) return pdf_area_along(camera, v, wo, w, next);
+  return mixture_pdf_area(v, wo, w, next, [&](const Bsdf& b, float pdf_bsdf, const Vec3& wi) {
+    const VertexGuide g = vertex_guide(guide->at(v.p), b);
+    return g.active() ? g.mixture_pdf_w(pdf_bsdf, wi) : pdf_bsdf;
+  });
 }
 
 }  // namespace
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
                const SdTree* guide) {
-  if (guide == nullptr || v.type != VertexType::Surface) return pdf_area(camera, v, prev, next);
-  return mixture_pdf_area(v, prev, next, [&](const Bsdf& b, float pdf_bsdf, const Vec3& w) {
-    const VertexGuide g = vertex_guide(guide->at(v.p), b);
-    return g.active() ? g.mixture_pdf_w(pdf_bsdf, w) : pdf_bsdf;
-  });
+  const Vec3 w = direction(v, next);
+  const Vec3 wo = v.type == VertexType::Surface && prev != nullptr ? direction(v, *prev) : Vec3{};
+  return pdf_area_along(camera, v, wo, w, next, guide);
 }
 
 namespace {
 
-// pdf_area with `tree`'s guide of `kind` (null: none), from v's cached guides where
+// pdf_area_along with `tree`'s guide of `kind` (null: none), from v's cached guides where
 // set_vertex_guides set them; towards_previous: next is the vertex before v on its own subpath
 // and the guide the other direction's, whose density there v caches.
-float guided_pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
+float guided_pdf_area(const PinholeCamera& camera, const Vertex& v, const Vec3& wo, const Vec3& w, const Vertex& next,
                       const SdTree* tree, GuideKind kind, bool towards_previous) {
-  if (tree == nullptr || v.type != VertexType::Surface || !v.guides_set) return pdf_area(camera, v, prev, next, tree);
+  if (tree == nullptr || v.type != VertexType::Surface || !v.guides_set) {
+    return pdf_area_along(camera, v, wo, w, next, tree);
+  }
   const VertexGuide& g = kind == GuideKind::Radiance ? v.radiance_guide : v.importance_guide;
-  return mixture_pdf_area(v, prev, next, [&](const Bsdf&, float pdf_bsdf, const Vec3& w) {
+  return mixture_pdf_area(v, wo, w, next, [&](const Bsdf&, float pdf_bsdf, const Vec3& wi) {
     if (!g.active()) return pdf_bsdf;
     if (towards_previous) return g.bsdf_fraction * pdf_bsdf + (1.f - g.bsdf_fraction) * v.reverse_guide_pdf_w;
-    return g.mixture_pdf_w(pdf_bsdf, w);
+    return g.mixture_pdf_w(pdf_bsdf, wi);
   });
 }
 
@@ -82,17 +90,25 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
   // Reverse densities at the connection under this strategy.
   // The light subpath continuing through qs and pt samples the importance guide; the camera
   // subpath continuing through pt and qs the radiance guide.
+  // Each of the four densities reads two of four unit directions, normalized once here.
   constexpr GuideKind kImportance = GuideKind::Importance, kRadiance = GuideKind::Radiance;
-  const float pt_rev = qs != nullptr ? guided_pdf_area(camera, *qs, qs_minus, pt, importance, kImportance, false)
-                                     : pdf_light_origin(scene, pt);
+  const Vec3 qs_to_pt = qs != nullptr ? direction(*qs, pt) : Vec3{};
+  const Vec3 pt_to_qs = qs != nullptr ? direction(pt, *qs) : Vec3{};
+  const Vec3 qs_back = qs_minus != nullptr ? direction(*qs, *qs_minus) : Vec3{};
+  const Vec3 pt_back = pt_minus != nullptr ? direction(pt, *pt_minus) : Vec3{};
+  const float pt_rev = qs != nullptr
+                           ? guided_pdf_area(camera, *qs, qs_back, qs_to_pt, pt, importance, kImportance, false)
+                           : pdf_light_origin(scene, pt);
   float pt_minus_rev = 0.f;
   if (pt_minus != nullptr) {
-    pt_minus_rev = qs != nullptr ? guided_pdf_area(camera, pt, qs, *pt_minus, importance, kImportance, true)
-                                 : pdf_light(pt, *pt_minus);
+    pt_minus_rev = qs != nullptr
+                       ? guided_pdf_area(camera, pt, pt_to_qs, pt_back, *pt_minus, importance, kImportance, true)
+                       : pdf_light(pt, *pt_minus);
   }
-  const float qs_rev = qs != nullptr ? guided_pdf_area(camera, pt, pt_minus, *qs, radiance, kRadiance, false) : 0.f;
+  const float qs_rev =
+      qs != nullptr ? guided_pdf_area(camera, pt, pt_back, pt_to_qs, *qs, radiance, kRadiance, false) : 0.f;
   const float qs_minus_rev =
-      qs_minus != nullptr ? guided_pdf_area(camera, *qs, &pt, *qs_minus, radiance, kRadiance, true) : 0.f;
+      qs_minus != nullptr ? guided_pdf_area(camera, *qs, qs_to_pt, qs_back, *qs_minus, radiance, kRadiance, true) : 0.f;
 
   const auto remap0 = [](float pdf) { return pdf != 0.f ? pdf : 1.f; };
   const auto h = [heuristic](float r) { return heuristic == MisHeuristic::Power ? r * r : r; };

@@ -6,10 +6,6 @@
 
 namespace dualight {
 
-Color scattering(const Vertex& v, const Vec3& next, TransportMode mode) {
-  return scattering_along(v, normalize(next - v.p), mode);
-}
-
 Color scattering_along(const Vertex& v, const Vec3& wi, TransportMode mode) {
   const Color f = with_bsdf(v, [&](const Bsdf& b) { return eval_f_world(b, v.ns, v.wo, wi, mode); });
   return f * shading_ratio(v.n, v.ns, mode == TransportMode::Radiance ? wi : v.wo);
@@ -17,6 +13,11 @@ Color scattering_along(const Vertex& v, const Vec3& wi, TransportMode mode) {
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next) {
   const Vec3 w = direction(v, next);
+  return pdf_area_along(camera, v, v.type == VertexType::Surface && prev != nullptr ? direction(v, *prev) : Vec3{}, w,
+                        next);
+}
+
+float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& wo, const Vec3& w, const Vertex& next) {
   float pdf_w = 0.f;
   switch (v.type) {
     case VertexType::Camera:
@@ -26,7 +27,7 @@ float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev,
       pdf_w = emission_pdf_w(v, w);
       break;
     case VertexType::Surface:
-      pdf_w = surface_pdf_w(v, direction(v, *prev), w, TransportMode::Radiance);
+      pdf_w = surface_pdf_w(v, wo, w, TransportMode::Radiance);
       break;
   }
   return solid_angle_to_area(pdf_w, v, next);

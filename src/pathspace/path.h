@@ -181,15 +181,16 @@ inline float emission_pdf_w(const Vertex& v, const Vec3& w) {
   return v.emitter != nullptr ? pdf_Le_direction(*v.emitter, w) : 0.f;
 }
 
-// The BSDF of surface vertex v from direction of `prev` (its wo) to `next`, in `mode`; f only,
-// the cosine belongs to the geometry term.
-Color scattering(const Vertex& v, const Vec3& next, TransportMode mode);
-// The same towards unit direction wi (a vertex at infinity's).
+// The BSDF of surface vertex v from direction of `prev` (its wo) to unit direction wi, in `mode`;
+// f only, the cosine belongs to the geometry term.
 Color scattering_along(const Vertex& v, const Vec3& wi, TransportMode mode);
 
 // Area density at `next` of sampling from v, which was reached from `prev` (unused at the ends of
 // a subpath): the camera's direction density, an emitter's cosine lobe, or v's BSDF.
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next);
+// The same from the unit directions at v: w = direction(v, next) and, at a surface vertex,
+// wo = direction(v, prev) (read only there). MIS weights pass the directions they share.
+float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& wo, const Vec3& w, const Vertex& next);
 
 // Emitter-side densities of an emitter point v as the start of a light subpath: of picking v
 // (area measure), and of emitting from v towards `next` (area measure at next).
