@@ -28,16 +28,19 @@ inline bool connect_visible(const Scene& scene, const Vertex& a, const Vertex& b
                                b.on_surface(), counters);
 }
 
-// Whether the segment d from surface vertex v to `other` lies in v's tangent plane within the
-// rounding of hit points (a few ulps of the coordinates). Such a connection has G = 0 exactly;
+// The rounding of hit points at a connection between points a and b: a few ulps of their largest
+// coordinate (the same for both ends).
+inline float rounding_band(const Vec3& a, const Vec3& b) {
+  return 16.f * std::numeric_limits<float>::epsilon() * max_component(vmax(vmax(a, -a), vmax(b, -b)));
+}
+
+// Whether the connection's segment d lies in surface vertex v's tangent plane within the
+// rounding `band` of its end points (rounding_band). Such a connection has G = 0 exactly;
 // in floats its cosine's sign, and so the side of the surface it runs on, is decided by
 // rounding: a light vertex on a closed wall's outside reached a camera vertex on its inside
 // through a connection along the wall (a leak of 1e-10, issue 18).
-inline bool along_surface(const Vertex& v, const Vec3& other, const Vec3& d) {
-  if (!v.on_surface()) return false;
-  const float band =
-      16.f * std::numeric_limits<float>::epsilon() * max_component(vmax(vmax(v.p, -v.p), vmax(other, -other)));
-  return std::abs(dot(v.n, d)) <= band;
+inline bool along_surface(const Vertex& v, const Vec3& d, float band) {
+  return v.on_surface() && std::abs(dot(v.n, d)) <= band;
 }
 
 // Vertex standing for the pinhole camera in t = 1 connections.
@@ -138,7 +141,8 @@ Color connect(const Scene& scene, const PinholeCamera& camera, const Path& light
   const Vec3 d = qs.p - pt.p;
   const float dist2 = dot(d, d);
   if (!(dist2 > 0.f)) return Color(0.f);
-  if (along_surface(pt, qs.p, d) || along_surface(qs, pt.p, d)) {
+  const float band = rounding_band(pt.p, qs.p);
+  if (along_surface(pt, d, band) || along_surface(qs, d, band)) {
     ++counters.skipped_connections;
     return Color(0.f);
   }
