@@ -33,9 +33,8 @@ float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& w
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
                const SdTree* guide) {
-  const Vec3 w = direction(v, next);
-  const Vec3 wo = v.type == VertexType::Surface && prev != nullptr ? direction(v, *prev) : Vec3{};
-  return pdf_area_along(camera, v, wo, w, next, guide);
+  if (guide == nullptr || v.type != VertexType::Surface) return pdf_area(camera, v, prev, next);
+  return pdf_area_along(camera, v, direction(v, *prev), direction(v, next), next, guide);
 }
 
 namespace {
