@@ -1,9 +1,9 @@
-// Drives any per-pixel estimator: tiles on TBB threads, progressive passes of samples per pixel,
-// a time limit, cancellation, and stats. Each (pixel, sample index) pair gets its own random
-// stream, and every sum has a fixed order (a pixel's samples in sample order; splats in order of
-// sample index, then tile, then pixel; both within blocks of kBlockSpp sample indices, film.h),
-// so the image is the same for any thread count, pass size, schedule, or split into tasks of
-// whole blocks (first_sample a multiple of kBlockSpp).
+// Drives any per-pixel estimator: rows of tiles on TBB threads, progressive passes of samples
+// per pixel, a time limit, cancellation, and stats. Each (pixel, sample index) pair gets its own
+// random stream, and every sum has a fixed order (a pixel's samples in sample order; splats in
+// order of sample index, then tile, then pixel; both within blocks of kBlockSpp sample indices,
+// film.h), so the image is the same for any thread count, pass size, schedule, or split into
+// tasks of whole blocks (first_sample a multiple of kBlockSpp).
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -37,24 +37,24 @@ constexpr int kTile = 16;
 
 inline bool block_ends_at(uint32_t s) { return (s + 1) % kBlockSpp == 0; }
 
-// A tile's splats, and for each sample index of the pass where they end and how many pixels
-// (light paths) it covered.
+// A row of a tile's splats, and for each sample index of the pass where they end and how many
+// pixels (light paths) it covered.
 struct TileSplats {
   SplatList list;
-  std::vector<std::pair<size_t, uint32_t>> rows;
+  std::vector<std::pair<size_t, uint32_t>> sample_ends;
 };
 
 struct TileRect {
   int x0, y0, x1, y1;
 };
 
-// Sample indices [first, first + count) of every pixel of a tile, sample index by sample index
-// (so the tile's splats come grouped by sample index); `rows` (may be null) records where each
-// sample index's splats end.
+// Sample indices [first, first + count) of every pixel of a tile (or of a row of one), sample
+// index by sample index (so the splats come grouped by sample index); `sample_ends` (may be
+// null) records where each sample index's splats end.
 template <class Sampler, class Estimate>
 void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, uint32_t first, uint32_t count,
                  const Estimate& estimate, RenderControl& control, TraceCounters& local, uint64_t& invalid,
-                 SplatList& splats, std::vector<std::pair<size_t, uint32_t>>* rows) {
+                 SplatList& splats, std::vector<std::pair<size_t, uint32_t>>* sample_ends) {
   const int w = film.width();
   for (uint32_t s = first; s < first + count && !control.cancelled(); ++s) {
     uint32_t row_paths = 0;
@@ -77,22 +77,23 @@ void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, u
       }
       if (control.cancelled()) break;
     }
-    if (rows != nullptr) rows->emplace_back(splats.splats().size(), row_paths);
+    if (sample_ends != nullptr) sample_ends->emplace_back(splats.splats().size(), row_paths);
     control.done.fetch_add(row_paths, std::memory_order_relaxed);
   }
 }
 
-// Adds the pass's splats to the film by sample index, then in tile order.
+// Adds the pass's splats to the film by sample index, then in tile order (and row by row within
+// a tile: `tiles` holds each tile's rows in turn).
 inline void merge_tile_splats(Film& film, std::vector<TileSplats>& tiles, uint32_t first, uint32_t count,
                               std::atomic<uint64_t>& invalid) {
   std::vector<size_t> begin(tiles.size(), 0);
   for (uint32_t i = 0; i < count; ++i) {
     for (size_t tile = 0; tile < tiles.size(); ++tile) {
       TileSplats& t = tiles[tile];
-      if (i >= t.rows.size()) continue;  // cancelled before this sample index
+      if (i >= t.sample_ends.size()) continue;  // cancelled before this sample index
       const Splat* data = t.list.splats().data();
-      film.add_splats(data + begin[tile], data + t.rows[i].first, t.rows[i].second);
-      begin[tile] = t.rows[i].first;
+      film.add_splats(data + begin[tile], data + t.sample_ends[i].first, t.sample_ends[i].second);
+      begin[tile] = t.sample_ends[i].first;
     }
     if (block_ends_at(first + i)) film.end_splat_block();
   }
@@ -139,8 +140,11 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
 
   SharedTraceCounters work(opt.unoccluded);
   std::atomic<uint64_t> invalid{0};
-  std::vector<TileSplats> tile_splats(opt.light_paths ? n_tiles : 0);
-  SplatList no_splats;  // estimators without light paths never add to it
+  // Threads share a pass out by rows of tiles: units finer than tiles keep them all busy up to the
+  // pass's end, and small images still have work for many threads. Each row keeps its own splats;
+  // merged row by row in tile order, they are added in the same order as whole tiles' would be.
+  const size_t n_units = n_tiles * kTile;
+  std::vector<TileSplats> tile_splats(opt.light_paths ? n_units : 0);
   RenderStats stats;
   const Stopwatch elapsed;
   uint32_t spp_done = 0;
@@ -153,16 +157,20 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     const uint32_t first = opt.first_sample + spp_done;
     const uint32_t count = unbounded ? pass_spp : std::min(pass_spp, opt.spp - spp_done);
     const double pass_start = elapsed();
-    parallel_for_each_index(opt.threads, n_tiles, [&](size_t tile) {
-      const int x0 = static_cast<int>(tile % tiles_x) * kTile, y0 = static_cast<int>(tile / tiles_x) * kTile;
-      const TileRect rect{x0, y0, std::min(x0 + kTile, w), std::min(y0 + kTile, h)};
+    parallel_for_each_index(opt.threads, n_units, [&](size_t unit) {
+      const size_t tile = unit / kTile;
+      const int x0 = static_cast<int>(tile % tiles_x) * kTile;
+      const int y = static_cast<int>(tile / tiles_x) * kTile + static_cast<int>(unit % kTile);
+      if (y >= h) return;  // a row of the last tiles below the image
+      const TileRect rect{x0, y, std::min(x0 + kTile, w), y + 1};
       TraceCounters local = work.local();
       uint64_t local_invalid = 0;
-      SplatList& splats = opt.light_paths ? tile_splats[tile].list : no_splats;
+      SplatList no_splats;  // estimators without light paths never add to it
+      SplatList& splats = opt.light_paths ? tile_splats[unit].list : no_splats;
       splats.clear();
-      if (opt.light_paths) tile_splats[tile].rows.clear();
+      if (opt.light_paths) tile_splats[unit].sample_ends.clear();
       render_tile<Sampler>(film, opt, rect, first, count, estimate, control, local, local_invalid, splats,
-                           opt.light_paths ? &tile_splats[tile].rows : nullptr);
+                           opt.light_paths ? &tile_splats[unit].sample_ends : nullptr);
       work.add(local);
       invalid.fetch_add(local_invalid, std::memory_order_relaxed);
     });
