@@ -1,9 +1,9 @@
-// Drives any per-pixel estimator: rows of tiles on TBB threads, progressive passes of samples
-// per pixel, a time limit, cancellation, and stats. Each (pixel, sample index) pair gets its own
-// random stream, and every sum has a fixed order (a pixel's samples in sample order; splats in
-// order of sample index, then tile, then pixel; both within blocks of kBlockSpp sample indices,
-// film.h), so the image is the same for any thread count, pass size, schedule, or split into
-// tasks of whole blocks (first_sample a multiple of kBlockSpp).
+// Drives any per-pixel estimator: tiles (or rows of them) on TBB threads, progressive passes of
+// samples per pixel, a time limit, cancellation, and stats. Each (pixel, sample index) pair gets
+// its own random stream, and every sum has a fixed order (a pixel's samples in sample order;
+// splats in order of sample index, then tile, then pixel; both within blocks of kBlockSpp sample
+// indices, film.h), so the image is the same for any thread count, pass size, schedule, or split
+// into tasks of whole blocks (first_sample a multiple of kBlockSpp).
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -37,8 +37,17 @@ constexpr int kTile = 16;
 
 inline bool block_ends_at(uint32_t s) { return (s + 1) % kBlockSpp == 0; }
 
-// A row of a tile's splats, and for each sample index of the pass where they end and how many
-// pixels (light paths) it covered.
+// Rows of a tile per unit of work: single rows where several workers share few tiles (a 64x64
+// image has 16), so that every worker stays busy up to a pass's end and small images still have
+// work for many workers; else whole tiles (fewer, larger tasks).
+constexpr size_t kTilesPerWorker = 64;
+inline int unit_rows(size_t n_tiles, int threads) {
+  const int workers = worker_count(threads);
+  return workers > 1 && n_tiles < kTilesPerWorker * static_cast<size_t>(workers) ? 1 : kTile;
+}
+
+// A unit's splats (a tile's, or a row of one), and for each sample index of the pass where they
+// end and how many pixels (light paths) it covered.
 struct TileSplats {
   SplatList list;
   std::vector<std::pair<size_t, uint32_t>> sample_ends;
@@ -83,7 +92,7 @@ void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, u
 }
 
 // Adds the pass's splats to the film by sample index, then in tile order (and row by row within
-// a tile: `tiles` holds each tile's rows in turn).
+// a tile where units are rows: `tiles` holds each tile's units in turn).
 inline void merge_tile_splats(Film& film, std::vector<TileSplats>& tiles, uint32_t first, uint32_t count,
                               std::atomic<uint64_t>& invalid) {
   std::vector<size_t> begin(tiles.size(), 0);
@@ -140,10 +149,11 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
 
   SharedTraceCounters work(opt.unoccluded);
   std::atomic<uint64_t> invalid{0};
-  // Threads share a pass out by rows of tiles: units finer than tiles keep them all busy up to the
-  // pass's end, and small images still have work for many threads. Each row keeps its own splats;
-  // merged row by row in tile order, they are added in the same order as whole tiles' would be.
-  const size_t n_units = n_tiles * kTile;
+  // Each unit of work keeps its own splats: merged by sample index, then in tile and row order,
+  // they are added in the same order whatever the units, so the image does not depend on them.
+  const int rows_per_unit = unit_rows(n_tiles, opt.threads);
+  const size_t units_per_tile = static_cast<size_t>(kTile / rows_per_unit);
+  const size_t n_units = n_tiles * units_per_tile;
   std::vector<TileSplats> tile_splats(opt.light_paths ? n_units : 0);
   RenderStats stats;
   const Stopwatch elapsed;
@@ -158,11 +168,11 @@ RenderStats drive_pixels(Film& film, const PixelDriverOptions& opt, RenderContro
     const uint32_t count = unbounded ? pass_spp : std::min(pass_spp, opt.spp - spp_done);
     const double pass_start = elapsed();
     parallel_for_each_index(opt.threads, n_units, [&](size_t unit) {
-      const size_t tile = unit / kTile;
+      const size_t tile = unit / units_per_tile;
       const int x0 = static_cast<int>(tile % tiles_x) * kTile;
-      const int y = static_cast<int>(tile / tiles_x) * kTile + static_cast<int>(unit % kTile);
-      if (y >= h) return;  // a row of the last tiles below the image
-      const TileRect rect{x0, y, std::min(x0 + kTile, w), y + 1};
+      const int y0 = static_cast<int>(tile / tiles_x) * kTile + static_cast<int>(unit % units_per_tile) * rows_per_unit;
+      if (y0 >= h) return;  // rows of the last tiles below the image
+      const TileRect rect{x0, y0, std::min(x0 + kTile, w), std::min(y0 + rows_per_unit, h)};
       TraceCounters local = work.local();
       uint64_t local_invalid = 0;
       SplatList no_splats;  // estimators without light paths never add to it
