@@ -91,22 +91,23 @@ void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, u
   }
 }
 
-// Adds the pass's splats to the film by sample index, then in tile order (and row by row within
-// a tile where units are rows: `tiles` holds each tile's units in turn).
-inline void merge_tile_splats(Film& film, std::vector<TileSplats>& tiles, uint32_t first, uint32_t count,
+// Adds the pass's splats to the film by sample index, then in unit order: `units` holds each
+// tile's units (the tile, or its rows) in turn, so that is tile order, and row order within a tile.
+inline void merge_tile_splats(Film& film, std::vector<TileSplats>& units, uint32_t first, uint32_t count,
                               std::atomic<uint64_t>& invalid) {
-  std::vector<size_t> begin(tiles.size(), 0);
+  std::vector<size_t> begin(units.size(), 0);
   for (uint32_t i = 0; i < count; ++i) {
-    for (size_t tile = 0; tile < tiles.size(); ++tile) {
-      TileSplats& t = tiles[tile];
-      if (i >= t.sample_ends.size()) continue;  // cancelled before this sample index
+    for (size_t unit = 0; unit < units.size(); ++unit) {
+      TileSplats& t = units[unit];
+      // None: cancelled before this sample index, or a row below the image.
+      if (i >= t.sample_ends.size()) continue;
       const Splat* data = t.list.splats().data();
-      film.add_splats(data + begin[tile], data + t.sample_ends[i].first, t.sample_ends[i].second);
-      begin[tile] = t.sample_ends[i].first;
+      film.add_splats(data + begin[unit], data + t.sample_ends[i].first, t.sample_ends[i].second);
+      begin[unit] = t.sample_ends[i].first;
     }
     if (block_ends_at(first + i)) film.end_splat_block();
   }
-  for (const TileSplats& t : tiles) invalid.fetch_add(t.list.invalid(), std::memory_order_relaxed);
+  for (const TileSplats& t : units) invalid.fetch_add(t.list.invalid(), std::memory_order_relaxed);
 }
 
 // Samples per pixel of the next pass: about a quarter second so time limits and progress stay
