@@ -146,7 +146,7 @@ def test_core_options_bind_each_field_once(cls: type) -> None:
         assert getattr(cls, name).__doc__, name
         with pytest.raises(AttributeError):
             setattr(options, name, getattr(options, name))
-    enums = (_core.MisHeuristic, _core.SamplerType, _core.Strategies)
+    enums = (_core.MisHeuristic, _core.SamplerType, _core.Strategies, _core.LaneIsa)
     names = {c.__name__: c for c in (*OPTIONS, *enums)}
     names["RefinementOracle"] = _core.RefinementOracle
     again = eval(repr(options), names)  # the repr is Python source

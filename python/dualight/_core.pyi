@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'Guide', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MAX_GUIDE_RECORDS', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'guide_from_records', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'train_importance_guide', 'train_radiance_guide', 'with_guide_start', 'write_image']
+__all__: list[str] = ['BLOCK_SPP', 'BdptOptions', 'Bsdf', 'BsdfKind', 'ChainPart', 'ChainStartUp', 'DirectSolver', 'Emitter', 'Film', 'FormFactorOptions', 'FormFactors', 'GaussSeidelSolver', 'Guide', 'HierarchicalOptions', 'HierarchicalSolver', 'JacobiSolver', 'LaneIsa', 'LightTracerOptions', 'MAX_DIRECT_PATCHES', 'MAX_GUIDE_RECORDS', 'MisHeuristic', 'MltOptions', 'PathTracerOptions', 'PinholeCamera', 'PssmltOptions', 'RadiositySystem', 'RefinementOracle', 'SamplerType', 'Scene', 'SouthwellSolver', 'Strategies', 'Texture', 'TransportMode', 'cast_random_rays', 'compute_form_factors', 'direct_irradiance', 'finish_chains', 'fresnel_dielectric', 'guide_from_records', 'point_polygon_form_factor', 'read_image', 'render_bdpt', 'render_light', 'render_mlt', 'render_path', 'render_pssmlt', 'run_chains', 'start_chains', 'trace_camera_hits', 'train_importance_guide', 'train_radiance_guide', 'with_guide_start', 'write_image']
 class Scene:
     """
     Immutable triangle scene committed to Embree (built by dualight.Scene).
@@ -409,12 +409,66 @@ class Strategies:
     @property
     def value(self) -> int:
         ...
+class LaneIsa:
+    """
+    Members:
+    
+      auto
+    
+      off
+    
+      sse2
+    
+      avx2
+    
+      avx512
+    """
+    __members__: typing.ClassVar[dict[str, LaneIsa]]
+    auto: typing.ClassVar[LaneIsa]
+    avx2: typing.ClassVar[LaneIsa]
+    avx512: typing.ClassVar[LaneIsa]
+    off: typing.ClassVar[LaneIsa]
+    sse2: typing.ClassVar[LaneIsa]
+    @typing.overload
+    def __eq__(self, other: LaneIsa) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: LaneIsa) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class PathTracerOptions:
     """
     Options of the path tracer.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'strategies', 'lanes', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 5, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, strategies: Strategies | str = ..., lanes: LaneIsa | str = ..., guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of the path tracer. Keywords only: an option left out keeps its default above (the C++ PathTracerOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -428,6 +482,7 @@ class PathTracerOptions:
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
         strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
+        lanes: auto: sixteen paths at a time in SIMD lanes where the CPU runs AVX-512 and the scene allows (diffuse, untextured, flat, area emitters); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
@@ -495,6 +550,11 @@ class PathTracerOptions:
     def guiding(self) -> bool:
         """
         Train a guide first, then sample directions from it (guiding/).
+        """
+    @property
+    def lanes(self) -> LaneIsa:
+        """
+        auto: sixteen paths at a time in SIMD lanes where the CPU runs AVX-512 and the scene allows (diffuse, untextured, flat, area emitters); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
         """
     @property
     def max_depth(self) -> int:

@@ -26,11 +26,22 @@ void bind_pathspace(py::module_& m) {
       .value("bsdf", Strategies::Bsdf)
       .value("light", Strategies::Light);
 
+  py::enum_<LaneIsa>(m, "LaneIsa")
+      .value("auto", LaneIsa::Auto)
+      .value("off", LaneIsa::Off)
+      .value("sse2", LaneIsa::Sse2)
+      .value("avx2", LaneIsa::Avx2)
+      .value("avx512", LaneIsa::Avx512);
+
   OptionsClass<PathTracerOptions> path(m, "PathTracerOptions", "Options of the path tracer.");
   add_pixel_fields(path, "Samples per pixel; 0 = until time_limit.");
   path.field("strategies", &PathTracerOptions::strategies,
              "mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone "
              "(the other only where it alone can find the light).");
+  path.field("lanes", &PathTracerOptions::lanes,
+             "auto: sixteen paths at a time in SIMD lanes where the CPU runs AVX-512 and the scene "
+             "allows (diffuse, untextured, flat, area emitters); off: one path at a time; sse2, avx2 "
+             "or avx512: that build. The image is the same, bit for bit.");
   add_guiding_fields(path);
   path.bind();
 

@@ -64,6 +64,11 @@ inline py::dict stats_dict(const RenderStats& s) {
   d["rays_per_second"] = s.seconds > 0 ? static_cast<double>(s.rays) / s.seconds : 0.0;
   d["interrupted"] = s.interrupted;
   d["time_limited"] = s.time_limited;
+  if (s.lanes != nullptr) d["lanes"] = s.lanes;
+  if (!s.lanes_off_because.empty()) {
+    d["lanes"] = "off";
+    d["lanes_off_because"] = s.lanes_off_because;
+  }
   if (s.guiding.used && s.importance_guiding.used) {
     py::dict g;  // guided BDPT: two guides
     g["training_seconds"] = s.guiding.training_seconds;  // one training made both

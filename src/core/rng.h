@@ -34,6 +34,10 @@ class Pcg32 {
     return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
   }
 
+  // The generator's state and increment (for lanes that step many generators at once, core/lanes.h).
+  uint64_t state() const { return state_; }
+  uint64_t increment() const { return inc_; }
+
   // Uniform in [0, 1): 24 random mantissa bits, so 1.0 is never returned.
   float next_float() { return static_cast<float>(next_uint() >> 8) * 0x1p-24f; }
 

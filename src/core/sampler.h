@@ -35,6 +35,7 @@ class IndependentSampler {
     return {u, rng_.next_float()};
   }
   void start_stream(int) {}  // see PrimarySampleSampler
+  const Pcg32& rng() const { return rng_; }
 
  private:
   Pcg32 rng_;

@@ -1,6 +1,7 @@
 #include "geometry/embree_accel.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -66,20 +67,84 @@ using QueryContext = RTCRayQueryContext;
 using QueryContext = RTCIntersectContext;
 #endif
 
-// Embree hands the query context to the filter callback: our filter rides behind it.
+// Embree hands the query context to the filter callback: our filter rides behind it (a
+// packet's, one per lane, found by the ray's id).
 struct FilterContext {
   QueryContext context;
   const HitFilter* filter;
+  const HitFilter* const* lane_filters;
 };
 
 void filter_callback(const RTCFilterFunctionNArguments* args) {
   const auto* fc = reinterpret_cast<const FilterContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
+    const HitFilter* filter =
+        fc->lane_filters != nullptr ? fc->lane_filters[RTCRayN_id(args->ray, args->N, i)] : fc->filter;
+    if (filter == nullptr) continue;
     const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
     const float t = RTCRayN_tfar(args->ray, args->N, i);  // the candidate hit's distance
-    if (fc->filter->ignore(fc->filter->user, prim, t)) args->valid[i] = 0;
+    if (filter->ignore(filter->user, prim, t)) args->valid[i] = 0;
   }
+}
+
+#if DUALIGHT_EMBREE4
+// An occlusion query's arguments, with fc's filter when `filtered`.
+RTCOccludedArguments occluded_arguments(FilterContext& fc, bool filtered) {
+  rtcInitRayQueryContext(&fc.context);
+  RTCOccludedArguments args;
+  rtcInitOccludedArguments(&args);
+  args.context = &fc.context;
+  if (filtered) {
+    // Embree 4 runs an argument filter only when the query asks for it on every geometry.
+    args.filter = filter_callback;
+    args.flags = static_cast<RTCRayQueryFlags>(args.flags | RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER);
+    args.feature_mask = static_cast<RTCFeatureFlags>(RTC_FEATURE_FLAG_ALL);
+  }
+  return args;
+}
+#else
+// An occlusion query's context, with fc's filter when `filtered`.
+void init_context(FilterContext& fc, bool filtered) {
+  rtcInitIntersectContext(&fc.context);
+  if (filtered) fc.context.filter = filter_callback;
+}
+#endif
+
+// A packet of rays as Embree's RTCRay16; the ids let the filter find each lane's filter.
+void fill_packet(const RayPacket& rays, RTCRay16& r) {
+  constexpr size_t bytes = sizeof(float) * RayPacket::kLanes;
+  std::memcpy(r.org_x, rays.ox, bytes);
+  std::memcpy(r.org_y, rays.oy, bytes);
+  std::memcpy(r.org_z, rays.oz, bytes);
+  std::memcpy(r.dir_x, rays.dx, bytes);
+  std::memcpy(r.dir_y, rays.dy, bytes);
+  std::memcpy(r.dir_z, rays.dz, bytes);
+  std::memcpy(r.tnear, rays.tmin, bytes);
+  std::memcpy(r.tfar, rays.tmax, bytes);
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    r.time[i] = 0.f;
+    r.mask[i] = 0xffffffffu;
+    r.id[i] = static_cast<unsigned>(i);
+    r.flags[i] = 0;
+  }
+}
+
+// Embree's lane masks (-1: trace) for the active lanes whose rays it accepts (embree_accepts);
+// false when none.
+bool packet_valid(const RayPacket& rays, int* valid) {
+  constexpr float kLarge = 1.844e18f;
+  int any = 0;
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    // Without branches, so the loop vectorizes; a NaN tmax fails tmax >= 0.
+    const int ok = (std::fabs(rays.ox[i]) <= kLarge) & (std::fabs(rays.oy[i]) <= kLarge) &
+                   (std::fabs(rays.oz[i]) <= kLarge) & (std::fabs(rays.dx[i]) <= kLarge) &
+                   (std::fabs(rays.dy[i]) <= kLarge) & (std::fabs(rays.dz[i]) <= kLarge) & (rays.tmax[i] >= 0.f) &
+                   (rays.active[i] != 0);
+    valid[i] = -ok;
+    any |= ok;
+  }
+  return any != 0;
 }
 
 }  // namespace
@@ -154,24 +219,61 @@ bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
   FilterContext fc{};
   fc.filter = filter;
 #if DUALIGHT_EMBREE4
-  rtcInitRayQueryContext(&fc.context);
-  RTCOccludedArguments args;
-  rtcInitOccludedArguments(&args);
-  args.context = &fc.context;
-  if (filter != nullptr) {
-    // Embree 4 runs an argument filter only when the query asks for it on every geometry.
-    args.filter = filter_callback;
-    args.flags = static_cast<RTCRayQueryFlags>(args.flags | RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER);
-    args.feature_mask = static_cast<RTCFeatureFlags>(RTC_FEATURE_FLAG_ALL);
-  }
+  RTCOccludedArguments args = occluded_arguments(fc, filter != nullptr);
   rtcOccluded1(impl_->scene.get(), &r, &args);
 #else
-  rtcInitIntersectContext(&fc.context);
-  if (filter != nullptr) fc.context.filter = filter_callback;
+  init_context(fc, filter != nullptr);
   rtcOccluded1(impl_->scene.get(), &fc.context, &r);
 #endif
   // Embree signals occlusion by setting tfar to -inf.
   return r.tfar < 0.f;
+}
+
+void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
+  alignas(64) int valid[RayPacket::kLanes];
+  for (uint32_t& p : hits.prim) p = RayHit::kNoHit;
+  if (!packet_valid(rays, valid)) return;
+  alignas(64) RTCRayHit16 rh;
+  fill_packet(rays, rh.ray);
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+#if DUALIGHT_EMBREE4
+  rtcIntersect16(valid, impl_->scene.get(), &rh);
+#else
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect16(valid, impl_->scene.get(), &ctx, &rh);
+#endif
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    if (valid[i] == 0 || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    hits.t[i] = rh.ray.tfar[i];
+    hits.u[i] = rh.hit.u[i];
+    hits.v[i] = rh.hit.v[i];
+    hits.prim[i] = rh.hit.primID[i];
+  }
+}
+
+void EmbreeAccel::occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const {
+  alignas(64) int valid[RayPacket::kLanes];
+  // Rays Embree would not accept count as occluded, as in occluded() above.
+  for (int i = 0; i < RayPacket::kLanes; ++i) blocked[i] = rays.active[i] != 0 ? 1 : 0;
+  if (!packet_valid(rays, valid)) return;
+  alignas(64) RTCRay16 r;
+  fill_packet(rays, r);
+  FilterContext fc{};
+  fc.lane_filters = filters;
+#if DUALIGHT_EMBREE4
+  RTCOccludedArguments args = occluded_arguments(fc, filters != nullptr);
+  rtcOccluded16(valid, impl_->scene.get(), &r, &args);
+#else
+  init_context(fc, filters != nullptr);
+  rtcOccluded16(valid, impl_->scene.get(), &fc.context, &r);
+#endif
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    if (valid[i] != 0) blocked[i] = r.tfar[i] < 0.f ? 1 : 0;
+  }
 }
 
 }  // namespace dualight

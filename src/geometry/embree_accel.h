@@ -23,6 +23,27 @@ struct HitFilter {
   const void* user = nullptr;
 };
 
+// Up to kLanes rays traced together (Embree's packet traversal), structure of arrays: lane i
+// holds a ray where active[i] != 0.
+struct RayPacket {
+  static constexpr int kLanes = 16;
+  alignas(64) float ox[kLanes], oy[kLanes], oz[kLanes];
+  alignas(64) float dx[kLanes], dy[kLanes], dz[kLanes];
+  alignas(64) float tmin[kLanes], tmax[kLanes];
+  alignas(64) int32_t active[kLanes];
+  Ray ray(int i) const { return Ray{{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmax[i], tmin[i]}; }
+  void set(int i, const Ray& r) {
+    ox[i] = r.o.x, oy[i] = r.o.y, oz[i] = r.o.z;
+    dx[i] = r.d.x, dy[i] = r.d.y, dz[i] = r.d.z;
+    tmin[i] = r.tmin, tmax[i] = r.tmax;
+  }
+};
+// The closest hits of a packet: lane i as RayHit (prim kNoHit: none, or an inactive lane).
+struct HitPacket {
+  alignas(64) float t[RayPacket::kLanes], u[RayPacket::kLanes], v[RayPacket::kLanes];
+  alignas(64) uint32_t prim[RayPacket::kLanes];
+};
+
 class EmbreeAccel {
  public:
   // positions: 3 floats per vertex; triangles: 3 indices per triangle. Copied into Embree buffers.
@@ -38,6 +59,10 @@ class EmbreeAccel {
   RayHit intersect(const Ray& ray) const;
   // True when anything blocks the ray in (0, ray.tmax), apart from hits the filter ignores.
   bool occluded(const Ray& ray, const HitFilter* filter = nullptr) const;
+  // The same for packets: hits.prim[i] etc. as intersect(rays.ray(i)); blocked[i] (1 or 0) as
+  // occluded(rays.ray(i), filters[i]) (filters[i] may be null). Inactive lanes miss and are not blocked.
+  void intersect(const RayPacket& rays, HitPacket& hits) const;
+  void occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const;
 
  private:
   struct Impl;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -182,10 +183,18 @@ Point2 Scene::interpolated_uv(uint32_t prim, float u, float v) const {
           w * uv_[2 * t[0] + 1] + u * uv_[2 * t[1] + 1] + v * uv_[2 * t[2] + 1]};
 }
 
-bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+void Scene::intersect(const RayPacket& rays, HitPacket& hits) const {
+  accel_->intersect(rays, hits);
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    if (hits.prim[i] == RayHit::kNoHit || hits.t[i] != 0.f) continue;
+    const RayHit rh = closest_hit(rays.ray(i));  // rare: as intersect() below, past a coplanar wall
+    hits.t[i] = rh.t, hits.u[i] = rh.u, hits.v[i] = rh.v, hits.prim[i] = rh.prim;
+  }
+}
+
+RayHit Scene::closest_hit(const Ray& ray) const {
   RayHit rh = accel_->intersect(ray);
-  if (!rh.hit()) return false;
-  if (rh.t == 0.f && plane_offset(rh.prim, ray.o) == 0.f) {
+  if (rh.hit() && rh.t == 0.f && plane_offset(rh.prim, ray.o) == 0.f) {
     // A ray leaving the edge where two walls meet starts in the other wall's plane, offset
     // along its own normal only: Embree reports that wall at t = 0, a point the ray does not
     // reach through it (it leaves the plane). Past it, the ray's real first hit (issue 18: a
@@ -194,8 +203,13 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     Ray past = ray;
     past.tmin = std::numeric_limits<float>::min();
     rh = accel_->intersect(past);
-    if (!rh.hit()) return false;
   }
+  return rh;
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+  const RayHit rh = closest_hit(ray);
+  if (!rh.hit()) return false;
   const uint32_t prim = rh.prim;
   hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;
   hit.n = normal_[prim];
@@ -224,7 +238,6 @@ struct VisibilityQuery {
   const Scene* scene;
   uint32_t target, origin_triangle;
   Vec3 origin, direction, target_point, target_normal;
-  float tolerance;
 
   // Which side of the plane of `prim` triangle `t` lies on: its vertex farthest from the plane.
   float side_of(uint32_t t, uint32_t prim) const {
@@ -247,27 +260,64 @@ struct VisibilityQuery {
     return same_side(s0, s1);
   }
 
+  // From p0 (on a surface with normal n0, on triangle `origin_tri`) to p1 on triangle `target_tri`:
+  // the ray starts off p0's surface on p1's side and is aimed at p1 itself (t = 1), so surfaces
+  // beyond it never count; any other surface before it blocks, however close to p1 it stands,
+  // so walls meeting the target's surface do not leak. (Built in place: Embree's filter reads it.)
+  VisibilityQuery(const Scene& s, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target_tri,
+                  uint32_t origin_tri)
+      : scene(&s),
+        target(target_tri),
+        origin_triangle(origin_tri),
+        origin(s.spawn_origin(p0, dot(n0, p1 - p0) > 0.f ? n0 : -n0)),
+        direction(p1 - origin),
+        target_point(p1),
+        target_normal(s.normal(target_tri)) {}
+  Ray ray() const { return Ray{origin, direction, 1.f}; }
+  // How far from the target's plane a hit may lie and still be in it (computed only for the
+  // rare hits on a triangle parallel to the target).
+  float tolerance() const {
+    return 1e-5f * std::max(1.f, max_component(vmax(vmax(target_point, -target_point), vmax(origin, -origin))));
+  }
+
   static bool ignore(const void* user, uint32_t prim, float t) {
     const auto* q = static_cast<const VisibilityQuery*>(user);
     if (prim == q->target || q->segment_stays_on_one_side(prim)) return true;
     if (std::abs(dot(q->target_normal, q->scene->normal(prim))) < 1.f - 1e-5f) return false;
     const Vec3 hit = q->origin + q->direction * t;
-    return std::abs(dot(q->target_normal, hit - q->target_point)) <= q->tolerance &&
-           std::abs(dot(q->target_normal, q->scene->vertex(prim, 0) - q->target_point)) <= q->tolerance;
+    const float tolerance = q->tolerance();
+    return std::abs(dot(q->target_normal, hit - q->target_point)) <= tolerance &&
+           std::abs(dot(q->target_normal, q->scene->vertex(prim, 0) - q->target_point)) <= tolerance;
   }
 };
 
 }  // namespace
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
-  const Vec3 d = p1 - p0;
-  const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
-  // Aimed at p1 itself (t = 1), so surfaces beyond it never count; any other surface before it
-  // blocks, however close to p1 it stands, so walls meeting the target's surface do not leak.
-  const float scale = std::max(1.f, max_component(vmax(vmax(p1, -p1), vmax(o0, -o0))));
-  const VisibilityQuery query{this, target, origin, o0, p1 - o0, p1, normal_[target], 1e-5f * scale};
+  const VisibilityQuery query(*this, p0, n0, p1, target, origin);
   const HitFilter filter{&VisibilityQuery::ignore, &query};
-  return !accel_->occluded(Ray{o0, p1 - o0, 1.f}, &filter);
+  return !accel_->occluded(query.ray(), &filter);
+}
+
+void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
+  constexpr int kLanes = RayPacket::kLanes;
+  RayPacket rays;
+  // Built in place, lane by lane: the filter reads them during the query.
+  alignas(VisibilityQuery) unsigned char storage[kLanes][sizeof(VisibilityQuery)];
+  HitFilter filter[kLanes];
+  const HitFilter* filters[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    rays.active[i] = q.active[i];
+    if (q.active[i] == 0) continue;
+    const auto* query = new (storage[i]) VisibilityQuery(*this, {q.p0x[i], q.p0y[i], q.p0z[i]}, {q.n0x[i], q.n0y[i], q.n0z[i]},
+                                                        {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
+    rays.set(i, query->ray());
+    filter[i] = HitFilter{&VisibilityQuery::ignore, query};
+    filters[i] = &filter[i];
+  }
+  int32_t blocked[kLanes];
+  accel_->occluded(rays, filters, blocked);
+  for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
 }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {

@@ -87,6 +87,8 @@ class Scene {
   Vec3 shading_normal(uint32_t prim, float u, float v) const {
     return smooth_.empty() || !smooth_[prim] ? normal_[prim] : interpolated_normal(prim, u, v);
   }
+  // Whether triangle `prim` interpolates vertex normals (else its shading normal is n).
+  bool smooth_shaded(uint32_t prim) const { return !smooth_.empty() && smooth_[prim] != 0; }
   // The surface coordinates at barycentrics (u, v) of vertices 1 and 2.
   Point2 surface_uv(uint32_t prim, float u, float v) const {
     return has_uv_.empty() || !has_uv_[prim] ? Point2{u, v} : interpolated_uv(prim, u, v);
@@ -151,7 +153,25 @@ class Scene {
   // space such as a pinhole camera.
   bool visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const;
 
+  // Packets of rays traced together (EmbreeAccel's), for estimators that run paths in lanes:
+  // hits as the RayHit behind intersect() for each active lane, and visible[i] (1 or 0) as
+  // visible(p0, n0, p1, target, origin) of lane i (0 for inactive lanes).
+  void intersect(const RayPacket& rays, HitPacket& hits) const;
+  struct ShadowPacket {
+    static constexpr int kLanes = RayPacket::kLanes;
+    alignas(64) float p0x[kLanes], p0y[kLanes], p0z[kLanes];
+    alignas(64) float n0x[kLanes], n0y[kLanes], n0z[kLanes];
+    alignas(64) float p1x[kLanes], p1y[kLanes], p1z[kLanes];
+    alignas(64) uint32_t target[kLanes], origin[kLanes];
+    alignas(64) int32_t active[kLanes];
+  };
+  void visible(const ShadowPacket& queries, int32_t* visible) const;
+  // The scale spawn_origin offsets at.
+  float offset_scale() const { return offset_scale_; }
+
  private:
+  // Embree's closest hit, past a wall the ray starts in the plane of (intersect()).
+  RayHit closest_hit(const Ray& ray) const;
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
   AreaEmitter area_emitter(uint32_t prim) const;
   void set_vertex_normals(const std::vector<float>& normals);

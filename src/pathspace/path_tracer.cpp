@@ -13,6 +13,7 @@
 #include "guiding/guiding_trial.h"
 #include "guiding/guided_sampling.h"
 #include "materials/shading_normal.h"
+#include "pathspace/path_tracer_lanes.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/russian_roulette.h"
 #include "pathspace/shadow_ray.h"
@@ -277,6 +278,34 @@ Color trace_path(const Scene& scene, const Ray& camera_ray, const PathTracerOpti
   return L;
 }
 
+// The kernel of `kernels` for samples of class Sampler.
+template <class Sampler>
+TracePathLanes<Sampler> lanes_for(const PathLanesKernels& kernels) {
+  if constexpr (std::is_same_v<Sampler, SobolSampler>) {
+    return kernels.sobol;
+  } else {
+    return kernels.independent;
+  }
+}
+
+// The pixels' samples on `film` by the path tracer in lanes (path_tracer_lanes.h): the image
+// drive_path's unguided estimate makes, bit for bit.
+RenderStats drive_path_lanes(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options,
+                             RenderControl& control, Film& film, const PixelDriverOptions& driver,
+                             const PathLanesKernels& kernels) {
+  const PathLanesScene ps = path_lanes_scene(scene, camera, options);
+  RenderStats stats = with_sampler(options.sampler, [&](auto tag) {
+    using Sampler = typename decltype(tag)::type;
+    const TracePathLanes<Sampler> trace = lanes_for<Sampler>(kernels);
+    return drive_pixels<Sampler>(
+        film, driver, control,
+        row_estimate([&](const float* x, const float* y, RowSamplers<Sampler>& samplers, int n,
+                         TraceCounters& counters, Color* out) { trace(ps, samplers, x, y, n, counters, out); }));
+  });
+  stats.lanes = kernels.isa;
+  return stats;
+}
+
 // The pixels' samples on `film`, guided by `guiding` (no tree and no collector: unguided, with
 // no guiding code compiled into the path).
 // pixel_estimates (when not null and not empty): each pixel's estimated value, for adjoint-driven roulette.
@@ -291,9 +320,13 @@ RenderStats drive_path(const Scene& scene, const PinholeCamera& camera, const Pa
     });
   };
   if (guiding.tree == nullptr && collector == nullptr) {
-    return drive([&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
+    const PathLanesChoice lanes = choose_path_lanes(scene, options);
+    if (lanes.kernels) return drive_path_lanes(scene, camera, options, control, film, driver, *lanes.kernels);
+    RenderStats stats = drive([&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
       return trace_path<false>(scene, scene.eye_ray(camera.generate_ray(x, y)), options, sampler, counters, {});
     });
+    stats.lanes_off_because = lanes.why_not;
+    return stats;
   }
   return drive([&](float x, float y, auto& sampler, TraceCounters& counters, SplatList&) {
     PathGuiding g = guiding;

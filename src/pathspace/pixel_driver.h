@@ -6,8 +6,11 @@
 // into tasks of whole blocks (first_sample a multiple of kBlockSpp).
 #pragma once
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -32,8 +35,25 @@ struct PixelDriverOptions {
 };
 
 namespace pixel_driver_detail {
-
 constexpr int kTile = 16;
+}  // namespace pixel_driver_detail
+
+// A row estimate estimates the pixels of a tile's row at one sample index in one call (the path
+// tracer in lanes, path_tracer_lanes.h): f(x, y, samplers, n, counters, values) gets n film
+// positions (x[i], y[i]) and their samplers (*samplers[i], whose first 2D sample placed the
+// position, as for a per-pixel estimate) and writes values[i]. Row estimates take no splats.
+template <class Sampler>
+using RowSamplers = std::array<std::optional<Sampler>, pixel_driver_detail::kTile>;
+template <class F>
+struct RowEstimate {
+  F f;
+};
+template <class F>
+RowEstimate<F> row_estimate(F f) {
+  return {std::move(f)};
+}
+
+namespace pixel_driver_detail {
 
 inline bool block_ends_at(uint32_t s) { return (s + 1) % kBlockSpp == 0; }
 
@@ -57,6 +77,54 @@ struct TileRect {
   int x0, y0, x1, y1;
 };
 
+// Sample index s of the pixels [x0, x1) of row y, one estimate call each; returns how many.
+template <class Sampler, class Estimate>
+uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
+                    const Estimate& estimate, TraceCounters& local, uint64_t& invalid, SplatList& splats) {
+  for (int x = x0; x < x1; ++x) {
+    const size_t pixel = static_cast<size_t>(y) * film.width() + x;
+    Sampler sampler(opt.seed, pixel, s);
+    const Point2 jitter = sampler.next_2d();
+    splats.begin_path();
+    Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
+    splats.end_path();
+    if (!is_finite(value)) {
+      value = Color(0.f);
+      ++invalid;
+    }
+    film.add_sample(pixel, value);
+    if (block_ends_at(s)) film.end_block(pixel);
+  }
+  return static_cast<uint32_t>(x1 - x0);
+}
+
+// The same for a row estimate: the same samplers, film positions and sums, in one call.
+template <class Sampler, class F>
+uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
+                    const RowEstimate<F>& estimate, TraceCounters& local, uint64_t& invalid, SplatList&) {
+  RowSamplers<Sampler> samplers;
+  float px[kTile], py[kTile];
+  const int n = x1 - x0;
+  for (int i = 0; i < n; ++i) {
+    Sampler& sampler = samplers[static_cast<size_t>(i)].emplace(opt.seed, static_cast<size_t>(y) * film.width() + x0 + i, s);
+    const Point2 jitter = sampler.next_2d();
+    px[i] = static_cast<float>(x0 + i) + jitter.u;
+    py[i] = static_cast<float>(y) + jitter.v;
+  }
+  Color value[kTile];
+  estimate.f(px, py, samplers, n, local, value);
+  for (int i = 0; i < n; ++i) {
+    const size_t pixel = static_cast<size_t>(y) * film.width() + x0 + i;
+    if (!is_finite(value[i])) {
+      value[i] = Color(0.f);
+      ++invalid;
+    }
+    film.add_sample(pixel, value[i]);
+    if (block_ends_at(s)) film.end_block(pixel);
+  }
+  return static_cast<uint32_t>(n);
+}
+
 // Sample indices [first, first + count) of every pixel of a tile (or of a row of one), sample
 // index by sample index (so the splats come grouped by sample index); `sample_ends` (may be
 // null) records where each sample index's splats end.
@@ -64,26 +132,10 @@ template <class Sampler, class Estimate>
 void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, uint32_t first, uint32_t count,
                  const Estimate& estimate, RenderControl& control, TraceCounters& local, uint64_t& invalid,
                  SplatList& splats, std::vector<std::pair<size_t, uint32_t>>* sample_ends) {
-  const int w = film.width();
   for (uint32_t s = first; s < first + count && !control.cancelled(); ++s) {
     uint32_t row_paths = 0;
     for (int y = r.y0; y < r.y1; ++y) {
-      for (int x = r.x0; x < r.x1; ++x) {
-        const size_t pixel = static_cast<size_t>(y) * w + x;
-        Sampler sampler(opt.seed, pixel, s);
-        const Point2 jitter = sampler.next_2d();
-        splats.begin_path();
-        Color value =
-            estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
-        splats.end_path();
-        if (!is_finite(value)) {
-          value = Color(0.f);
-          ++invalid;
-        }
-        film.add_sample(pixel, value);
-        if (block_ends_at(s)) film.end_block(pixel);
-        ++row_paths;
-      }
+      row_paths += render_row<Sampler>(film, opt, r.x0, r.x1, y, s, estimate, local, invalid, splats);
       if (control.cancelled()) break;
     }
     if (sample_ends != nullptr) sample_ends->emplace_back(splats.splats().size(), row_paths);

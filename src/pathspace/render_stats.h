@@ -2,6 +2,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <string>
 
 #include "film/film.h"
 
@@ -76,6 +77,10 @@ struct RenderStats {
   double seconds = 0.0;
   bool interrupted = false;
   bool time_limited = false;     // stopped by time_limit before reaching spp
+  // The path tracer's lanes (path_tracer_lanes.h): the instruction set they ran on, or null
+  // (one path at a time), and then why.
+  const char* lanes = nullptr;
+  std::string lanes_off_because;
   GuidingStats guiding;  // the guide's (guided BDPT: the radiance guide's)
   GuidingStats importance_guiding;  // guided BDPT's importance guide
 };

@@ -2,6 +2,7 @@
 // the walks' own bookkeeping and must notice a tampered density or throughput.
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "box_scene.h"
@@ -9,6 +10,8 @@
 #include "lobe_records.h"
 #include "core/sampler.h"
 #include "pathspace/path.h"
+#include "pathspace/path_tracer.h"
+#include "pathspace/path_tracer_lanes.h"
 #include "pathspace/mis_weight.h"
 #include "pathspace/subpath.h"
 
@@ -404,4 +407,51 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_infinity") {
     CHECK(escaped >= 150);
     CHECK(sunlit >= 150);
   }
+}
+
+TEST_CASE("path_tracer_lanes_render_the_scalar_image_bit_for_bit") {
+  // Each build of the lanes the CPU runs, both samplers, odd image sizes (rows of fewer than
+  // sixteen pixels), one and two threads: the scalar tracer's means, variances and counters.
+  const auto scene = std::make_shared<const Scene>(closed_box());
+  const auto render = [&](LaneIsa lanes, SamplerType sampler, int width, int threads) {
+    const PinholeCamera camera({0.5f, 0.5f, 0.05f}, {0.5f, 0.5f, 1.f}, {0, 1, 0}, 60.f, width, 7);
+    PathTracerOptions options;
+    options.spp = 6;
+    options.max_depth = 6;
+    options.rr_depth = 2;
+    options.seed = 11;
+    options.threads = threads;
+    options.sampler = sampler;
+    options.lanes = lanes;
+    RenderControl control;
+    return render_path(*scene, camera, options, control);
+  };
+  int builds = 0;
+  for (const LaneIsa isa : {LaneIsa::Sse2, LaneIsa::Avx2, LaneIsa::Avx512}) {
+    for (const SamplerType sampler : {SamplerType::Independent, SamplerType::Sobol}) {
+      for (const int width : {5, 21}) {
+        const RenderResult scalar = render(LaneIsa::Off, sampler, width, 1);
+        CHECK(scalar.stats.lanes == nullptr);
+        PathTracerOptions probe;
+        probe.lanes = isa;
+        bool runs = true;
+        try {
+          choose_path_lanes(*scene, probe);
+        } catch (const std::invalid_argument&) {
+          runs = false;  // this CPU lacks the instruction set
+        }
+        if (!runs) continue;
+        ++builds;
+        for (const int threads : {1, 2}) {
+          const RenderResult lanes = render(isa, sampler, width, threads);
+          REQUIRE(lanes.stats.lanes != nullptr);
+          CHECK(lanes.film.mean() == scalar.film.mean());
+          CHECK(lanes.film.variance_of_mean() == scalar.film.variance_of_mean());
+          CHECK(lanes.stats.rays == scalar.stats.rays);
+          CHECK(lanes.stats.skipped_connections == scalar.stats.skipped_connections);
+        }
+      }
+    }
+  }
+  CHECK(builds > 0);  // the baseline build runs on every x86-64 CPU
 }

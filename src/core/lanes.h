@@ -1,0 +1,144 @@
+// Sixteen lanes of float and int32 (GCC's vector extensions) for code that runs one sample per
+// lane (pathspace/path_lanes_kernel.h). Deliberately without include guard or includes: only
+// the per-ISA translation units include it, after their `#pragma GCC target` and with
+// DUALIGHT_LANES_NS naming their namespace and DUALIGHT_LANES_BITS their vector width, so
+// each gets its own copy compiled for its instruction set (the headers it needs are included
+// before the pragma, at the baseline, by pathspace/path_tracer_lanes.h).
+//
+// Every operation is the IEEE operation the scalar code performs on each value (those units
+// build with -ffp-contract=off: no fused multiply-add), so a lane computes the scalar code's
+// bits; the scalar code's std::max(a, b) is (a < b ? b : a), and so on.
+
+namespace dualight::DUALIGHT_LANES_NS {
+
+constexpr int kLanes = 16;
+using vf = float __attribute__((vector_size(4 * kLanes)));
+using vi = int32_t __attribute__((vector_size(4 * kLanes)));  // masks: -1 true, 0 false
+
+inline vf splat(float x) { return vf{} + x; }
+inline vi splat_i(int32_t x) { return vi{} + x; }
+inline vf load(const float* p) {
+  vf v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline vi load(const int32_t* p) {
+  vi v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store(float* p, vf v) { std::memcpy(p, &v, sizeof v); }
+inline void store(int32_t* p, vi v) { std::memcpy(p, &v, sizeof v); }
+
+inline vf select(vi m, vf a, vf b) { return m ? a : b; }
+inline vi select(vi m, vi a, vi b) { return m ? a : b; }
+// Bit i: lane i of mask m is true.
+inline uint32_t lane_bits(vi m) {
+#if DUALIGHT_LANES_BITS == 512
+  __m512i v;
+  std::memcpy(&v, &m, sizeof v);
+  return _mm512_test_epi32_mask(v, v);
+#elif DUALIGHT_LANES_BITS == 256
+  uint32_t b = 0;
+  for (int k = 0; k < kLanes; k += 8) {
+    b |= static_cast<uint32_t>(_mm256_movemask_ps(_mm256_loadu_ps(reinterpret_cast<const float*>(&m) + k))) << k;
+  }
+  return b;
+#else
+  uint32_t b = 0;
+  for (int k = 0; k < kLanes; k += 4) {
+    b |= static_cast<uint32_t>(_mm_movemask_ps(_mm_loadu_ps(reinterpret_cast<const float*>(&m) + k))) << k;
+  }
+  return b;
+#endif
+}
+inline bool any(vi m) { return lane_bits(m) != 0; }
+inline uint64_t count(vi m) { return static_cast<uint64_t>(__builtin_popcount(lane_bits(m))); }
+
+inline vf bits_to_float(vi x) { return reinterpret_cast<vf&>(x); }
+inline vi float_to_bits(vf x) { return reinterpret_cast<vi&>(x); }
+inline vf abs(vf x) { return bits_to_float(float_to_bits(x) & 0x7fffffff); }
+// std::copysign(1.f, x)
+inline vf copysign_one(vf x) { return bits_to_float((float_to_bits(x) & int32_t(0x80000000u)) | 0x3f800000); }
+inline vf max(vf a, vf b) { return select(a < b, b, a); }  // std::max
+inline vf min(vf a, vf b) { return select(b < a, b, a); }  // std::min
+
+inline vf sqrt(vf x) {
+  vf r;
+#if DUALIGHT_LANES_BITS == 512
+  __m512 v;
+  std::memcpy(&v, &x, sizeof v);
+  v = _mm512_sqrt_ps(v);
+  std::memcpy(&r, &v, sizeof r);
+#elif DUALIGHT_LANES_BITS == 256
+  for (int k = 0; k < kLanes; k += 8) {
+    __m256 v = _mm256_loadu_ps(reinterpret_cast<const float*>(&x) + k);
+    _mm256_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm256_sqrt_ps(v));
+  }
+#else
+  for (int k = 0; k < kLanes; k += 4) {
+    __m128 v = _mm_loadu_ps(reinterpret_cast<const float*>(&x) + k);
+    _mm_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm_sqrt_ps(v));
+  }
+#endif
+  return r;
+}
+
+// base[index[i]] for each lane (index 0 where a lane has nothing to read: the tables are not empty).
+inline vf gather(const float* base, vi index) {
+#if DUALIGHT_LANES_BITS == 512
+  __m512i i;
+  std::memcpy(&i, &index, sizeof i);
+  const __m512 g = _mm512_i32gather_ps(i, base, 4);
+  vf r;
+  std::memcpy(&r, &g, sizeof r);
+  return r;
+#elif DUALIGHT_LANES_BITS == 256
+  vf r;
+  for (int k = 0; k < kLanes; k += 8) {
+    const __m256i i = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(reinterpret_cast<const int32_t*>(&index) + k));
+    _mm256_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm256_i32gather_ps(base, i, 4));
+  }
+  return r;
+#else
+  vf r;
+  for (int k = 0; k < kLanes; ++k) r[k] = base[index[k]];
+  return r;
+#endif
+}
+
+// Sixteen PCG32 generators (core/rng.h) stepped together: lane i yields what its own Pcg32
+// would, where `active` (the others do not advance).
+using vu = uint32_t __attribute__((vector_size(4 * kLanes)));
+using vu64 = uint64_t __attribute__((vector_size(8 * kLanes)));
+using vi64 = int64_t __attribute__((vector_size(8 * kLanes)));
+struct LanePcg32 {
+  vu64 state, inc;
+  vf next_float(vi active) {
+    const vu64 old = state;
+    state = __builtin_convertvector(active, vi64) ? old * 6364136223846793005ull + inc : old;
+    const vu xorshifted = __builtin_convertvector(((old >> 18u) ^ old) >> 27u, vu);
+    const vu rot = __builtin_convertvector(old >> 59u, vu);
+    const vu bits = (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    return select(active, __builtin_convertvector((vi)(bits >> 8u), vf) * 0x1p-24f, vf{});
+  }
+};
+
+// A Vec3 (or Color) per lane; operations in Vec3's order.
+struct V3 {
+  vf x, y, z;
+};
+inline V3 splat(const Vec3& v) { return {splat(v.x), splat(v.y), splat(v.z)}; }
+inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator-(const V3& a) { return {-a.x, -a.y, -a.z}; }
+inline V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+inline V3 operator*(const V3& a, vf s) { return {a.x * s, a.y * s, a.z * s}; }
+inline V3 operator*(const V3& a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+inline V3 operator/(const V3& a, vf s) { return {a.x / s, a.y / s, a.z / s}; }
+inline vf dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 select(vi m, const V3& a, const V3& b) { return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)}; }
+inline vi is_black(const V3& v) { return (v.x == 0.f) & (v.y == 0.f) & (v.z == 0.f); }
+inline vf max_component(const V3& v) { return max(v.x, max(v.y, v.z)); }
+
+}  // namespace dualight::DUALIGHT_LANES_NS

@@ -1,0 +1,299 @@
+// The path tracer's bounce for sixteen lanes (path_tracer_lanes.h): extend_path of
+// path_tracer.cpp (unidirectional path tracing with next-event estimation and MIS [Veach 1997,
+// ch. 9]) for Lambertian surfaces and area emitters, lane-wide. Each step names the scalar
+// function it mirrors; the order of operations is that function's, so the bits are too.
+// Deliberately without include guard or includes: see core/lanes.h.
+
+namespace dualight::DUALIGHT_LANES_NS {
+
+// The rays of the lanes' current segment.
+struct LaneRays {
+  V3 o, d;
+  vf tmin, tmax;
+};
+
+// A lane's path between two vertices (CameraPathState, unguided).
+struct LanePaths {
+  vi active;
+  V3 beta, L;
+  vf prev_pdf_w;
+  vi prev_delta;
+};
+
+// The vertex each lane's ray found, gathered from the scene's tables (Scene::intersect).
+struct LaneVertex {
+  V3 p, n, albedo;
+  vf t;
+  vi prim, emitter;  // emitter -1: none
+};
+
+// two_strategy_weight (strategies.h): MIS's power heuristic, or one strategy alone.
+inline vf two_strategy_weight(Strategies chosen, Strategies own, vf pdf_own, vf pdf_other) {
+  if (chosen == Strategies::Mis) {
+    const vf a2 = pdf_own * pdf_own, b2 = pdf_other * pdf_other;
+    return select(a2 > 0.f, a2 / (a2 + b2), splat(0.f));
+  }
+  if (chosen == own) return splat(1.f);
+  return select(pdf_other > 0.f, splat(0.f), splat(1.f));
+}
+
+// A float field (at `offset` bytes) of the table rows `index` names, per lane; row 0 where a
+// lane is not `active`.
+template <class Table>
+vf gather_field(const Table* table, vi index, vi active, size_t offset) {
+  static_assert(sizeof(Table) % 4 == 0 && std::is_standard_layout_v<Table>);
+  return gather(reinterpret_cast<const float*>(table) + offset / 4,
+                select(active, index, splat_i(0)) * static_cast<int32_t>(sizeof(Table) / 4));
+}
+template <class Table>
+vi gather_int(const Table* table, vi index, vi active, size_t offset) {
+  return float_to_bits(gather_field(table, index, active, offset));
+}
+template <class Table>
+V3 gather3(const Table* table, vi index, vi active, size_t offset) {
+  return {gather_field(table, index, active, offset), gather_field(table, index, active, offset + 4),
+          gather_field(table, index, active, offset + 8)};
+}
+// b0 p0 + b1 p1 + b2 p2 with b0 = 1 - b1 - b2, in Scene::intersect's (and sample_Le_position's) order.
+template <class Table>
+V3 barycentric_point(const Table* table, vi index, vi active, vf b1, vf b2) {
+  constexpr size_t p = offsetof(Table, p);
+  return gather3(table, index, active, p) * ((1.f - b1) - b2) + gather3(table, index, active, p + 12) * b1 +
+         gather3(table, index, active, p + 24) * b2;
+}
+
+// The lanes' random numbers: each lane's own sampler, one lane at a time...
+template <class Sampler>
+struct LaneNumbers {
+  LaneSamplers<Sampler>& samplers;
+  vf next_1d(vi active) {
+    alignas(64) float u[kLanes] = {};
+    for (int i = 0; i < kLanes; ++i) {
+      if (active[i] != 0) u[i] = samplers[static_cast<size_t>(i)]->next_1d();
+    }
+    return load(u);
+  }
+  void next_2d(vi active, vf& u, vf& v) {
+    alignas(64) float a[kLanes] = {}, b[kLanes] = {};
+    for (int i = 0; i < kLanes; ++i) {
+      if (active[i] == 0) continue;
+      const Point2 p = samplers[static_cast<size_t>(i)]->next_2d();
+      a[i] = p.u, b[i] = p.v;
+    }
+    u = load(a), v = load(b);
+  }
+};
+// ... or, for the independent sampler, their generators stepped together.
+template <>
+struct LaneNumbers<IndependentSampler> {
+  LanePcg32 rng{};
+  explicit LaneNumbers(LaneSamplers<IndependentSampler>& samplers) {
+    for (int i = 0; i < kLanes; ++i) {
+      const auto& s = samplers[static_cast<size_t>(i)];
+      rng.state[i] = s ? s->rng().state() : 0u;
+      rng.inc[i] = s ? s->rng().increment() : 1u;
+    }
+  }
+  vf next_1d(vi active) { return rng.next_float(active); }
+  void next_2d(vi active, vf& u, vf& v) {
+    u = rng.next_float(active);
+    v = rng.next_float(active);
+  }
+};
+
+// Frame::from_normal [Duff et al. 2017].
+struct LaneFrame {
+  V3 s, t, n;
+  V3 to_local(const V3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  V3 to_world(const V3& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+inline LaneFrame frame_from_normal(const V3& n) {
+  const vf sign = copysign_one(n.z);
+  const vf a = -1.f / (sign + n.z);
+  const vf b = n.x * n.y * a;
+  return {{1.f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+}
+
+// square_to_cosine_hemisphere (core/sampling.h): the concentric disk, Cephes' sine and cosine.
+inline V3 square_to_cosine_hemisphere(vf u, vf v) {
+  const vf a = 2.f * u - 1.f, b = 2.f * v - 1.f;
+  const vi centre = (a == 0.f) & (b == 0.f);
+  const vi x_sector = a * a > b * b;
+  const vf r = select(x_sector, a, b);
+  const vf x = (kPi / 4.f) * (select(x_sector, b, a) / r);
+  const vf z = x * x;
+  const vf s = x + x * z * (-1.6666654611e-1f + z * (8.3321608736e-3f + z * -1.9515295891e-4f));
+  const vf c = 1.f - 0.5f * z + z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
+  const vf du = select(centre, splat(0.f), select(x_sector, r * c, r * s));
+  const vf dv = select(centre, splat(0.f), select(x_sector, r * s, r * c));
+  return {du, dv, sqrt(max(splat(0.f), 1.f - du * du - dv * dv))};
+}
+inline vf cosine_hemisphere_pdf(vf cos_theta) { return select(cos_theta > 0.f, cos_theta * kInvPi, splat(0.f)); }
+
+// offset_ray_origin (core/ray.h), one component.
+inline vf offset_component(vf v, vf nv, float scene_scale) {
+  const float origin = (1.f / 32.f) * scene_scale, float_scale = (1.f / 65536.f) * scene_scale;
+  const vi of = __builtin_convertvector(256.f * nv, vi);
+  const vf shifted = bits_to_float(float_to_bits(v) + select(v < 0.f, -of, of));
+  return select(abs(v) < origin, v + float_scale * nv, shifted);
+}
+inline V3 offset_ray_origin(const V3& p, const V3& n, float scene_scale) {
+  return {offset_component(p.x, n.x, scene_scale), offset_component(p.y, n.y, scene_scale),
+          offset_component(p.z, n.z, scene_scale)};
+}
+
+// Scene::intersect for the active lanes: those that find nothing end (no environment).
+inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
+  RayPacket packet;
+  store(packet.ox, r.o.x), store(packet.oy, r.o.y), store(packet.oz, r.o.z);
+  store(packet.dx, r.d.x), store(packet.dy, r.d.y), store(packet.dz, r.d.z);
+  store(packet.tmin, r.tmin), store(packet.tmax, r.tmax), store(packet.active, paths.active);
+  HitPacket hits;
+  ps.scene->intersect(packet, hits);
+  counters.rays += count(paths.active);
+  LaneVertex v;
+  v.prim = load(reinterpret_cast<const int32_t*>(hits.prim));
+  paths.active &= v.prim != -1;
+  const LaneTriangle* tri = ps.triangles.data();
+  v.emitter = select(paths.active, gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, emitter)), splat_i(-1));
+  v.t = load(hits.t);
+  v.p = barycentric_point(tri, v.prim, paths.active, load(hits.u), load(hits.v));
+  v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
+  v.albedo = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, albedo));
+  return v;
+}
+
+// emission_seen: the emitters the lanes hit, weighted against next-event estimation.
+inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LanePaths& paths) {
+  const vi hit = paths.active & (v.emitter >= 0);
+  if (!any(hit)) return;
+  const LaneEmitter* em = ps.emitters.data();
+  const V3 e_n = gather3(em, v.emitter, hit, offsetof(LaneEmitter, n));
+  const V3 Le = select(dot(e_n, wo) > 0.f, gather3(em, v.emitter, hit, offsetof(LaneEmitter, Le)), splat(Vec3(0.f)));
+  const vf cos_light = abs(dot(v.n, wo));
+  const vf pdf_light_w = gather_field(em, v.emitter, hit, offsetof(LaneEmitter, pdf_a)) * v.t * v.t / cos_light;
+  const vf w = two_strategy_weight(ps.options->strategies, Strategies::Bsdf, paths.prev_pdf_w, pdf_light_w);
+  const V3 beta_Le = paths.beta * Le;
+  const V3 C = select(is_black(Le), splat(Vec3(0.f)), select(paths.prev_delta, beta_Le, beta_Le * w));
+  paths.L = select(hit, paths.L + C, paths.L);
+}
+
+// Scene::visible for the lanes in `shadow`, or no ray where connections are unoccluded
+// (shadow_ray_visible).
+inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi target, vi shadow,
+                  TraceCounters& counters) {
+  if (counters.unoccluded) {
+    counters.skipped_shadow_rays += count(shadow);
+    return shadow;
+  }
+  counters.rays += count(shadow);
+  Scene::ShadowPacket q;
+  store(q.p0x, v.p.x), store(q.p0y, v.p.y), store(q.p0z, v.p.z);
+  store(q.n0x, v.n.x), store(q.n0y, v.n.y), store(q.n0z, v.n.z);
+  store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
+  store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
+  store(q.active, shadow);
+  alignas(64) int32_t seen[kLanes];
+  ps.scene->visible(q, seen);
+  return load(seen) != 0;
+}
+
+// next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
+// MIS-weighted against BSDF sampling, through its shadow ray.
+template <class Sampler>
+void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LaneNumbers<Sampler>& numbers,
+                    LanePaths& paths, TraceCounters& counters) {
+  const vi active = paths.active;
+  const vf u_select = numbers.next_1d(active);
+  vf u, w;
+  numbers.next_2d(active, u, w);
+  alignas(64) int32_t chosen[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (active[i] != 0) chosen[i] = static_cast<int32_t>(ps.scene->choose_emitter(u_select[i]).emitter - ps.scene->emitters().data());
+  }
+  const vi e = load(chosen);
+  const LaneEmitter* em = ps.emitters.data();
+  // pdf_Le_position: the choice's pmf over the area, the emitter's pmf.
+  const vf pdf_a = gather_field(em, e, active, offsetof(LaneEmitter, pdf_a));
+  const vf su = sqrt(u);                     // square_to_uniform_triangle
+  const V3 y = barycentric_point(em, e, active, w * su, 1.f - su);
+  const V3 to_light = y - v.p;
+  const vf dist2 = dot(to_light, to_light);
+  const V3 wi = to_light / sqrt(dist2);
+  const vf cos_light = -dot(gather3(em, e, active, offsetof(LaneEmitter, n)), wi);
+  const vi sampled = active & (cos_light > 0.f) & (dist2 > 0.f);
+  const vf pdf_w = pdf_a * dist2 / cos_light;
+  // eval_f_world and pdf_w_world of the Lambertian (its two cosines about the shading normal).
+  const vf cos_o = dot(wo, v.n), cos_i = dot(wi, v.n);
+  const vi same_side = cos_o * cos_i > 0.f;
+  const V3 f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
+  const vi black = is_black(f);
+  counters.skipped_connections += count(sampled & black);
+  const vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
+  const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
+  const vi shadow = sampled & ~black & (weight != 0.f);
+  if (!any(shadow)) return;
+  const vi seen = visible(ps, v, y, gather_int(em, e, shadow, offsetof(LaneEmitter, prim)), shadow, counters);
+  const V3 C = paths.beta * f * gather3(em, e, seen, offsetof(LaneEmitter, Le)) * (abs(cos_i) * weight / pdf_w);
+  paths.L = select(seen, paths.L + C, paths.L);
+}
+
+// The lanes' BSDF samples (Lambertian `sample`, cosine-weighted) and Russian roulette: the next
+// segment's rays; lanes whose path ends there leave `active`.
+template <class Sampler>
+void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame, const V3& wo_local, int depth,
+           LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
+  vf u1, u2;
+  numbers.next_2d(paths.active, u1, u2);
+  V3 wi = square_to_cosine_hemisphere(u1, u2);
+  wi.z = select(wo_local.z < 0.f, -wi.z, wi.z);
+  const vf pdf_w = cosine_hemisphere_pdf(abs(wi.z));
+  paths.active &= (wo_local.z != 0.f) & (pdf_w > 0.f);
+  paths.beta = paths.beta * v.albedo;
+  paths.prev_pdf_w = pdf_w;
+  paths.prev_delta = splat_i(0);
+  const V3 wi_world = frame.to_world(wi);
+  rays.o = offset_ray_origin(v.p, select(wi.z > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  rays.d = wi_world;
+  rays.tmin = splat(0.f);
+  rays.tmax = splat(std::numeric_limits<float>::infinity());
+  if (depth >= ps.options->rr_depth) {
+    const vf q = min(max_component(paths.beta), splat(0.95f));  // roulette_survival, scale 1
+    const vi go_on = numbers.next_1d(paths.active) < q;
+    paths.active &= go_on;
+    paths.beta = paths.beta / q;
+  }
+}
+
+// extend_path for lanes [0, n) from their camera rays; out[i]: lane i's radiance estimate.
+template <class Sampler>
+void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x, const float* y, int n,
+                 TraceCounters& counters, Color* out) {
+  alignas(64) float o[3][kLanes] = {}, d[3][kLanes] = {}, tmin[kLanes] = {}, tmax[kLanes] = {};
+  alignas(64) int32_t active[kLanes] = {};
+  for (int i = 0; i < n; ++i) {
+    const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(x[i], y[i]));
+    for (int k = 0; k < 3; ++k) o[k][i] = r.o[k], d[k][i] = r.d[k];
+    tmin[i] = r.tmin, tmax[i] = r.tmax, active[i] = -1;
+  }
+  LaneRays rays{{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
+  LanePaths paths{load(active), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1)};
+  LaneNumbers<Sampler> numbers{samplers};
+  const int max_depth = ps.options->max_depth;
+  const auto depth_allows = [&](int segments) { return max_depth < 0 || segments <= max_depth; };
+  for (int depth = 1; depth_allows(depth) && any(paths.active); ++depth) {
+    const LaneVertex v = intersect(ps, rays, paths, counters);
+    const V3 wo = -rays.d;
+    add_emission(ps, v, wo, paths);
+    if (!depth_allows(depth + 1)) break;
+    const LaneFrame frame = frame_from_normal(v.n);
+    const V3 wo_local = frame.to_local(wo);
+    add_next_event(ps, v, wo, numbers, paths, counters);
+    leave(ps, v, frame, wo_local, depth, numbers, paths, rays);
+  }
+  alignas(64) float L[3][kLanes];
+  store(L[0], paths.L.x), store(L[1], paths.L.y), store(L[2], paths.L.z);
+  for (int i = 0; i < n; ++i) out[i] = Color(L[0][i], L[1][i], L[2][i]);
+}
+
+}  // namespace dualight::DUALIGHT_LANES_NS

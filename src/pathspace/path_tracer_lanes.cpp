@@ -1,0 +1,96 @@
+#include "pathspace/path_tracer_lanes.h"
+
+#include <stdexcept>
+
+namespace dualight {
+
+namespace {
+
+// What the scene has that the lanes do not cover ("" when nothing).
+std::string lanes_lack(const Scene& scene) {
+  if (scene.environment() != nullptr) return "an environment emitter";
+  if (scene.emitter_count() == 0) return "no emitters";
+  for (const Emitter& e : scene.emitters()) {
+    const auto* area = std::get_if<AreaEmitter>(&e);
+    if (area == nullptr) return "emitters other than area emitters";
+    if (area->texture != nullptr) return "a textured emitter";
+  }
+  for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
+    const Material& m = scene.material(prim);
+    if (m.textured() || !std::holds_alternative<Lambertian>(m.bsdf)) return "materials other than untextured diffuse";
+    if (scene.smooth_shaded(prim)) return "vertex normals";
+  }
+  return "";
+}
+
+bool cpu_runs(LaneIsa isa) {
+  switch (isa) {
+    case LaneIsa::Avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+    case LaneIsa::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+    default:
+      return true;
+  }
+}
+
+PathLanesKernels kernels_for(LaneIsa isa) {
+  switch (isa) {
+    case LaneIsa::Avx512:
+      return path_lanes_kernels_avx512();
+    case LaneIsa::Avx2:
+      return path_lanes_kernels_avx2();
+    default:
+      return path_lanes_kernels_sse2();
+  }
+}
+
+}  // namespace
+
+PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& options) {
+  if (options.lanes == LaneIsa::Off) return {std::nullopt, "lanes='off'"};
+  if (options.guiding) return {std::nullopt, "guiding"};
+  if (options.lanes != LaneIsa::Auto && !cpu_runs(options.lanes)) {
+    throw std::invalid_argument("this CPU cannot run the lanes' instruction set asked for");
+  }
+  std::string lack = lanes_lack(scene);
+  if (!lack.empty()) return {std::nullopt, "the scene has " + lack};
+  if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
+  // Sixteen lanes fill one AVX-512 register. The narrower builds split every value over two or
+  // four registers and run slower than one path at a time (Cornell box, one thread: AVX2 0.61
+  // M samples/s against 1.03), so they are there for checks, not chosen.
+  if (cpu_runs(LaneIsa::Avx512)) return {kernels_for(LaneIsa::Avx512), ""};
+  return {std::nullopt, "this CPU lacks AVX-512 (the narrower builds are slower than one path at a time)"};
+}
+
+PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options) {
+  PathLanesScene ps;
+  ps.scene = &scene;
+  ps.camera = &camera;
+  ps.options = &options;
+  const auto copy = [](const Vec3& v, float* out) { out[0] = v.x, out[1] = v.y, out[2] = v.z; };
+  ps.triangles.resize(scene.triangle_count());
+  for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
+    LaneTriangle& t = ps.triangles[prim];
+    for (int c = 0; c < 3; ++c) copy(scene.vertex(prim, c), t.p[c]);
+    copy(scene.normal(prim), t.n);
+    copy(std::get<Lambertian>(scene.material(prim).bsdf).albedo, t.albedo);
+    const Emitter* e = scene.emitter_at(prim);
+    t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
+  }
+  for (const Emitter& e : scene.emitters()) {
+    const AreaEmitter& a = std::get<AreaEmitter>(e);
+    LaneEmitter le;
+    copy(a.p0, le.p[0]), copy(a.p1, le.p[1]), copy(a.p2, le.p[2]);
+    copy(a.n, le.n);
+    copy(a.Le, le.Le);
+    le.pdf_a = pdf_Le_position(a, scene.emitter_pmf(e));
+    le.prim = a.prim;
+    ps.emitters.push_back(le);
+  }
+  return ps;
+}
+
+}  // namespace dualight

@@ -1,0 +1,94 @@
+// The path tracer in lanes: sixteen camera paths (the pixels of a tile's row, at one sample
+// index) advance together, their rays traced as Embree packets and their shading computed in
+// SIMD lanes (core/lanes.h), compiled for SSE2, AVX2 and AVX-512 and chosen at run time by what
+// the CPU supports (only AVX-512 by default: see choose_path_lanes). As in Mitsuba 3's
+// vectorised variants, lanes are paths, not rays of one path.
+//
+// Each lane computes exactly what the scalar path tracer (path_tracer.cpp) computes for its
+// sample: the same sampler (seed, pixel, sample index), the same numbers drawn in the same
+// order, the same IEEE operations in the same order (no fused multiply-add), Embree's packet
+// hits (the same as its single-ray hits) and the same exact visibility test. So the image is the
+// scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
+//
+// It covers the scenes most research renders use: Lambertian materials without textures, flat
+// triangles, untextured area emitters, no environment, unguided. render_path falls back to the
+// scalar tracer elsewhere (stats "lanes": "off" then).
+#pragma once
+#include <immintrin.h>
+
+#include <array>
+#include <cstdint>
+#include <cstddef>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/sampler.h"
+#include "geometry/camera.h"
+#include "geometry/scene.h"
+#include "pathspace/path_tracer.h"
+#include "pathspace/render_stats.h"
+
+namespace dualight {
+
+// What the kernel gathers per triangle and per emitter, in one place each (a cache line per
+// triangle), copied from the scene with the values the scalar tracer reads.
+struct LaneTriangle {
+  float p[3][3];      // corners
+  float n[3];         // unit geometric normal (= the shading normal: flat triangles only)
+  float albedo[3];    // the Lambertian's
+  int32_t emitter;    // index into Scene::emitters(), -1: none
+};
+struct LaneEmitter {
+  float p[3][3];  // corners
+  float n[3];
+  float Le[3];
+  float pdf_a;    // pmf / area, as AreaEmitter's pdf_Le_position rounds it
+  uint32_t prim;
+};
+
+struct PathLanesScene {
+  const Scene* scene = nullptr;
+  const PinholeCamera* camera = nullptr;
+  const PathTracerOptions* options = nullptr;
+  std::vector<LaneTriangle> triangles;
+  std::vector<LaneEmitter> emitters;
+};
+
+constexpr int kPathLanes = RayPacket::kLanes;
+template <class Sampler>
+using LaneSamplers = std::array<std::optional<Sampler>, kPathLanes>;
+
+// Traces lanes [0, n) (n <= kPathLanes): lane i starts at film position (x[i], y[i]) with
+// *samplers[i] (its first 2D sample already spent on that position) and writes its radiance
+// estimate to out[i].
+template <class Sampler>
+using TracePathLanes = void (*)(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x,
+                                const float* y, int n, TraceCounters& counters, Color* out);
+
+struct PathLanesKernels {
+  const char* isa = nullptr;  // "sse2", "avx2", "avx512"
+  TracePathLanes<IndependentSampler> independent = nullptr;
+  TracePathLanes<SobolSampler> sobol = nullptr;
+};
+// One per instruction set (path_tracer_lanes_<isa>.cpp).
+PathLanesKernels path_lanes_kernels_sse2();
+PathLanesKernels path_lanes_kernels_avx2();
+PathLanesKernels path_lanes_kernels_avx512();
+
+// The kernels options.lanes names (Auto: AVX-512 where the CPU runs it), or none (Off, a
+// guided render, a scene the lanes do not cover, or Auto on a CPU without AVX-512: why_not
+// says which). Throws std::invalid_argument for an instruction set this CPU lacks.
+struct PathLanesChoice {
+  std::optional<PathLanesKernels> kernels;
+  std::string why_not;
+};
+PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& options);
+
+// The tables the kernel gathers from (scene, camera and options must outlive it).
+PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options);
+
+}  // namespace dualight

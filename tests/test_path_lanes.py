@@ -1,0 +1,142 @@
+"""The path tracer in lanes (``render(..., lanes=...)``): sixteen paths at a time in SIMD lanes,
+built for SSE2, AVX2 and AVX-512. Its contract is the scalar tracer's image, bit for bit, on
+every build the CPU runs; these tests hold it to that (images, variances and counters) across
+samplers, strategies, path lengths, thread counts and image sizes, and check where it falls back."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+import dualight
+from dualight import scenes
+
+ISAS = ("sse2", "avx2", "avx512")
+
+
+def _runs(isa: str) -> bool:
+    """Whether this CPU runs the lanes' build for `isa`."""
+    try:
+        dualight.render(scenes.cornell_box((16, 1)), spp=1, max_depth=2, progress=False, lanes=isa)
+    except ValueError:
+        return False
+    return True
+
+
+RUNNABLE = [isa for isa in ISAS if _runs(isa)]
+COUNTERS = (
+    "rays",
+    "skipped_connections",
+    "skipped_shadow_rays",
+    "invalid_samples",
+    "samples",
+    "spp",
+)
+
+
+def _render(scene: dualight.Scene, lanes: str, **kw: Any) -> dualight.Image:
+    options: dict[str, Any] = {"spp": 8, "max_depth": 8, "seed": 5, "threads": 1, "progress": False}
+    return dualight.render(scene, "path", lanes=lanes, **{**options, **kw})
+
+
+def _assert_same(a: dualight.Image, b: dualight.Image) -> None:
+    assert np.array_equal(np.asarray(a), np.asarray(b))
+    assert a.variance is not None and b.variance is not None
+    assert np.array_equal(a.variance, b.variance)
+    for key in COUNTERS:
+        assert a.stats[key] == b.stats[key], key
+
+
+CASES: list[tuple[str, Any, dict[str, Any]]] = [
+    ("cornell", lambda: scenes.cornell_box((40, 36)), {}),
+    ("cornell sobol", lambda: scenes.cornell_box((40, 36)), {"sampler": "sobol"}),
+    ("cornell bsdf only", lambda: scenes.cornell_box((40, 36)), {"strategies": "bsdf"}),
+    ("cornell light only", lambda: scenes.cornell_box((40, 36)), {"strategies": "light"}),
+    ("cornell depth 1", lambda: scenes.cornell_box((40, 36)), {"max_depth": 1}),
+    ("cornell depth 2", lambda: scenes.cornell_box((40, 36)), {"max_depth": 2}),
+    ("cornell unbounded", lambda: scenes.cornell_box((40, 36)), {"max_depth": -1, "rr_depth": 2}),
+    ("cornell two threads", lambda: scenes.cornell_box((40, 36)), {"threads": 2}),
+    ("door", lambda: scenes.door_ajar((24, 20)), {"spp": 16}),
+    ("rooms", lambda: scenes.rooms(3, resolution=(20, 18)), {}),
+    # A convex enclosure: connections known unoccluded (no shadow rays), and with skip=False traced.
+    ("furnace", lambda: scenes.furnace(0.7, 1.0, resolution=(17, 5)), {"max_depth": -1}),
+    (
+        "furnace, every shadow ray",
+        lambda: scenes.furnace(0.7, 1.0, resolution=(17, 5)),
+        {"skip": False},
+    ),
+]
+
+
+@pytest.mark.skipif(not RUNNABLE, reason="this CPU runs no build of the lanes")
+@pytest.mark.parametrize(("name", "build", "kw"), CASES, ids=[c[0] for c in CASES])
+def test_lanes_render_the_scalar_image_bit_for_bit(
+    name: str, build: Any, kw: dict[str, Any]
+) -> None:
+    scene = build()
+    scalar = _render(scene, "off", **kw)
+    assert scalar.stats["lanes"] == "off"
+    for isa in RUNNABLE:
+        lanes = _render(scene, isa, **kw)
+        assert lanes.stats["lanes"] == isa
+        _assert_same(scalar, lanes)
+    # Negative control: the comparison tells another seed's image apart.
+    other = _render(scene, RUNNABLE[-1], **{**kw, "seed": 6})
+    assert not np.array_equal(np.asarray(other), np.asarray(scalar))
+
+
+@pytest.mark.skipif(not RUNNABLE, reason="this CPU runs no build of the lanes")
+def test_negative_control_a_reflectance_one_ulp_off_changes_the_image() -> None:
+    scene = scenes.cornell_box((32, 16))
+    nudged = scenes.cornell_box(
+        (32, 16), reflectance_scale=float(np.nextafter(np.float32(1), np.float32(2)))
+    )
+    a = _render(scene, "off")
+    b = _render(nudged, RUNNABLE[-1])
+    assert not np.array_equal(np.asarray(a), np.asarray(b))
+
+
+def test_auto_takes_avx512_where_the_cpu_has_it_and_says_so() -> None:
+    image = _render(scenes.cornell_box((16, 16)), "auto")
+    if "avx512" in RUNNABLE:
+        assert image.stats["lanes"] == "avx512"
+        assert "lanes_off_because" not in image.stats
+    else:
+        assert image.stats["lanes"] == "off"
+        assert "AVX-512" in image.stats["lanes_off_because"]
+
+
+@pytest.mark.parametrize(
+    ("build", "why"),
+    [
+        (lambda: scenes.cornell_box((16, 16), variant="caustics"), "materials"),
+        (lambda: scenes.cornell_box((16, 16), variant="textured"), "materials"),
+        (lambda: scenes.cornell_box((16, 16), variant="point"), "emitters"),
+        (lambda: scenes.cornell_box((16, 16), variant="sky"), "environment"),
+        (lambda: scenes.cornell_box((16, 16), variant="lamp"), "textured emitter"),
+    ],
+)
+def test_scenes_the_lanes_do_not_cover_render_one_path_at_a_time(build: Any, why: str) -> None:
+    image = _render(build(), "auto")
+    assert image.stats["lanes"] == "off"
+    assert why in image.stats["lanes_off_because"]
+
+
+def test_guided_renders_run_one_path_at_a_time() -> None:
+    image = dualight.render(
+        scenes.cornell_box((16, 16)),
+        spp=8,
+        max_depth=4,
+        progress=False,
+        guiding={"max_records": 10_000},
+    )
+    assert image.stats["lanes"] == "off"
+
+
+def test_lanes_is_checked_and_only_for_the_path_tracer() -> None:
+    with pytest.raises(ValueError, match="lanes"):
+        _render(scenes.cornell_box((16, 16)), "avx1024")
+    with pytest.raises(ValueError, match="lanes"):
+        dualight.render(scenes.cornell_box((16, 16)), "bdpt", spp=1, progress=False, lanes="off")
