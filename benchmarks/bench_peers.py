@@ -17,6 +17,7 @@ Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers
 
     python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 11 minutes
     python benchmarks/bench_peers.py --quick         # 1 s budgets, 1 seed, the Cornell box
+    python benchmarks/bench_peers.py --lanes off     # dualight one path at a time (its own JSON)
 """
 
 from __future__ import annotations
@@ -45,9 +46,15 @@ NAMES = ("cornell", "caustics", "door")
 
 
 def render_dualight(
-    scene: dualight.Scene, budget: float, info: dict[str, Any], threads: int, seed: int
-) -> tuple[np.ndarray, float, int]:
-    """dualight's path tracer for ``budget`` seconds: image, seconds, spp."""
+    scene: dualight.Scene,
+    budget: float,
+    info: dict[str, Any],
+    threads: int,
+    seed: int,
+    lanes: dualight.methods.Lanes = "auto",
+) -> tuple[np.ndarray, float, int, str]:
+    """dualight's path tracer for ``budget`` seconds: image, seconds, spp, and which of its
+    builds ran (``stats["lanes"]``)."""
     start = time.perf_counter()
     image = dualight.render(
         scene,
@@ -60,8 +67,14 @@ def render_dualight(
         sampler="independent",
         threads=threads,
         progress=False,
+        lanes=lanes,
     )
-    return np.asarray(image), time.perf_counter() - start, int(image.stats["spp"])
+    return (
+        np.asarray(image),
+        time.perf_counter() - start,
+        int(image.stats["spp"]),
+        image.stats["lanes"],
+    )
 
 
 def mitsuba_scene(scene: dualight.Scene, variant: str, info: dict[str, Any]) -> Any:
@@ -107,7 +120,9 @@ def row(seconds: float, spp: int, error: dict[str, float]) -> dict[str, Any]:
     return {"seconds": seconds, "spp": spp, **error}
 
 
-def run_scene(name: str, budget: float, seeds: int, threads: int, robust: bool) -> dict[str, Any]:
+def run_scene(
+    name: str, budget: float, seeds: int, threads: int, robust: bool, lanes: dualight.methods.Lanes
+) -> dict[str, Any]:
     """Every renderer on scene ``name`` with ``threads`` threads, ``seeds`` times, with
     Embree's robust mode on or off."""
     _, scene, ref, ref_var, info = bench_mlt.prepare(name)
@@ -120,8 +135,10 @@ def run_scene(name: str, budget: float, seeds: int, threads: int, robust: bool) 
     runs: dict[str, list[dict[str, Any]]] = {"dualight": [], **{v: [] for v in PEERS}}
     for k in range(seeds):
         seed = 60 + k
-        image, seconds, spp = render_dualight(scene, budget, info, threads, seed)
-        runs["dualight"].append(row(seconds, spp, errors(image, ref, ref_var, full)))
+        image, seconds, spp, ran = render_dualight(scene, budget, info, threads, seed, lanes)
+        runs["dualight"].append(
+            {**row(seconds, spp, errors(image, ref, ref_var, full)), "lanes": ran}
+        )
         for v in PEERS:
             image, seconds = render_mitsuba(mscenes[v], v, spps[v], seed)
             runs[v].append(row(seconds, spps[v], errors(image, ref, ref_var, full)))
@@ -161,6 +178,9 @@ def main() -> None:
         "--intersections", type=str, default="robust,fast", help="Embree modes: robust, fast"
     )
     parser.add_argument("--quick", action="store_true", help="1 s, 1 seed, the Cornell box")
+    parser.add_argument(
+        "--lanes", type=str, default="auto", help="dualight's render(lanes=...): auto, off, ..."
+    )
     args = parser.parse_args()
     if args.quick:
         args.budget, args.seeds, args.scenes = 1.0, 1, "cornell"
@@ -177,7 +197,7 @@ def main() -> None:
     results: dict[str, dict[str, Any]] = {}
     for threads in thread_counts:
         for name, mode in [(n, m) for n in names for m in modes]:
-            r = run_scene(name, args.budget, args.seeds, threads, mode == "robust")
+            r = run_scene(name, args.budget, args.seeds, threads, mode == "robust", args.lanes)
             results.setdefault(f"threads_{threads}", {}).setdefault(mode, {})[name] = r
             for v, ratio in r["ratios"].items():
                 print(
@@ -204,10 +224,12 @@ def main() -> None:
         },
         "budget_seconds": args.budget,
         "seeds": args.seeds,
+        "lanes": args.lanes,
         "results": results,
     }
     RESULTS.mkdir(parents=True, exist_ok=True)
-    out = RESULTS / ("bench_peers_quick.json" if args.quick else "bench_peers.json")
+    stem = "bench_peers_quick" if args.quick else "bench_peers"
+    out = RESULTS / (f"{stem}.json" if args.lanes == "auto" else f"{stem}_lanes_{args.lanes}.json")
     out.write_text(json.dumps(summary, indent=2) + "\n")
     print(f"wrote {out}")
 

@@ -58,6 +58,13 @@ CASES: list[tuple[str, Any, dict[str, Any]]] = [
     ("cornell depth 2", lambda: scenes.cornell_box((40, 36)), {"max_depth": 2}),
     ("cornell unbounded", lambda: scenes.cornell_box((40, 36)), {"max_depth": -1, "rr_depth": 2}),
     ("cornell two threads", lambda: scenes.cornell_box((40, 36)), {"threads": 2}),
+    # A mirror and a glass sphere: delta lobes, refraction and its roulette scale.
+    ("caustic box", lambda: scenes.cornell_box((40, 36), variant="caustics"), {"spp": 16}),
+    (
+        "caustic box deep",
+        lambda: scenes.cornell_box((40, 36), variant="caustics", ior=1.33),
+        {"max_depth": 16, "rr_depth": 3},
+    ),
     ("door", lambda: scenes.door_ajar((24, 20)), {"spp": 16}),
     ("rooms", lambda: scenes.rooms(3, resolution=(20, 18)), {}),
     # A convex enclosure: connections known unoccluded (no shadow rays), and with skip=False traced.
@@ -111,7 +118,9 @@ def test_auto_takes_avx512_where_the_cpu_has_it_and_says_so() -> None:
 @pytest.mark.parametrize(
     ("build", "why"),
     [
-        (lambda: scenes.cornell_box((16, 16), variant="caustics"), "materials"),
+        (lambda: scenes.cornell_box((16, 16), variant="glossy"), "materials"),
+        (lambda: scenes.cornell_box((16, 16), variant="coated"), "materials"),
+        (lambda: scenes.cornell_box((16, 16), variant="smooth"), "vertex normals"),
         (lambda: scenes.cornell_box((16, 16), variant="textured"), "materials"),
         (lambda: scenes.cornell_box((16, 16), variant="point"), "emitters"),
         (lambda: scenes.cornell_box((16, 16), variant="sky"), "environment"),

@@ -55,8 +55,8 @@ inline uint32_t lane_bits(vi m) {
 inline bool any(vi m) { return lane_bits(m) != 0; }
 inline uint64_t count(vi m) { return static_cast<uint64_t>(__builtin_popcount(lane_bits(m))); }
 
-inline vf bits_to_float(vi x) { return reinterpret_cast<vf&>(x); }
-inline vi float_to_bits(vf x) { return reinterpret_cast<vi&>(x); }
+inline vf bits_to_float(vi x) { return (vf)x; }  // a vector cast keeps the bits
+inline vi float_to_bits(vf x) { return (vi)x; }
 inline vf abs(vf x) { return bits_to_float(float_to_bits(x) & 0x7fffffff); }
 // std::copysign(1.f, x)
 inline vf copysign_one(vf x) { return bits_to_float((float_to_bits(x) & int32_t(0x80000000u)) | 0x3f800000); }

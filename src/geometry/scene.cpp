@@ -260,16 +260,15 @@ struct VisibilityQuery {
     return same_side(s0, s1);
   }
 
-  // From p0 (on a surface with normal n0, on triangle `origin_tri`) to p1 on triangle `target_tri`:
-  // the ray starts off p0's surface on p1's side and is aimed at p1 itself (t = 1), so surfaces
-  // beyond it never count; any other surface before it blocks, however close to p1 it stands,
-  // so walls meeting the target's surface do not leak. (Built in place: Embree's filter reads it.)
-  VisibilityQuery(const Scene& s, const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target_tri,
-                  uint32_t origin_tri)
+  // From o0 (off the surface of triangle `origin_tri`, Scene::shadow_origin) to p1 on triangle
+  // `target_tri`: the ray is aimed at p1 itself (t = 1), so surfaces beyond it never count; any
+  // other surface before it blocks, however close to p1 it stands, so walls meeting the target's
+  // surface do not leak. (Built in place: Embree's filter reads it.)
+  VisibilityQuery(const Scene& s, const Vec3& o0, const Vec3& p1, uint32_t target_tri, uint32_t origin_tri)
       : scene(&s),
         target(target_tri),
         origin_triangle(origin_tri),
-        origin(s.spawn_origin(p0, dot(n0, p1 - p0) > 0.f ? n0 : -n0)),
+        origin(o0),
         direction(p1 - origin),
         target_point(p1),
         target_normal(s.normal(target_tri)) {}
@@ -294,7 +293,7 @@ struct VisibilityQuery {
 }  // namespace
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
-  const VisibilityQuery query(*this, p0, n0, p1, target, origin);
+  const VisibilityQuery query(*this, shadow_origin(p0, n0, p1), p1, target, origin);
   const HitFilter filter{&VisibilityQuery::ignore, &query};
   return !accel_->occluded(query.ray(), &filter);
 }
@@ -309,8 +308,8 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   for (int i = 0; i < kLanes; ++i) {
     rays.active[i] = q.active[i];
     if (q.active[i] == 0) continue;
-    const auto* query = new (storage[i]) VisibilityQuery(*this, {q.p0x[i], q.p0y[i], q.p0z[i]}, {q.n0x[i], q.n0y[i], q.n0z[i]},
-                                                        {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
+    const auto* query = new (storage[i])
+        VisibilityQuery(*this, {q.o0x[i], q.o0y[i], q.o0z[i]}, {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
     rays.set(i, query->ray());
     filter[i] = HitFilter{&VisibilityQuery::ignore, query};
     filters[i] = &filter[i];
@@ -321,8 +320,7 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
 }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
-  const Vec3 d = p1 - p0;
-  const Vec3 o0 = spawn_origin(p0, dot(n0, d) > 0.f ? n0 : -n0);
+  const Vec3 o0 = shadow_origin(p0, n0, p1);
   // To the eye, short of it by eye_clearance (surfaces through the pinhole do not block it).
   const Vec3 to_eye = p1 - o0;
   const float stop = 1.f - eye_clearance_ / length(to_eye);

@@ -119,6 +119,10 @@ class Scene {
   // p moved off its surface along n by offset_ray_origin (core/ray.h) at this scene's scale: the
   // largest side of the bounding box, capped at 1 (a power of two, so offsets stay exact).
   Vec3 spawn_origin(const Vec3& p, const Vec3& n) const { return offset_ray_origin(p, n, offset_scale_); }
+  // Where a shadow ray from p0 (on a surface of normal n0) towards p1 starts: off the surface on p1's side.
+  Vec3 shadow_origin(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
+    return spawn_origin(p0, dot(n0, p1 - p0) > 0.f ? n0 : -n0);
+  }
   // Surfaces closer to the pinhole than this (1e-6 of the scene's extent) are not seen from it,
   // by every estimator alike: rays leaving the eye start there (Ray::tmin), and connections to
   // the eye stop there (visible_point). A pinhole lying on a wall saw the wall's back at t = 0
@@ -155,12 +159,12 @@ class Scene {
 
   // Packets of rays traced together (EmbreeAccel's), for estimators that run paths in lanes:
   // hits as the RayHit behind intersect() for each active lane, and visible[i] (1 or 0) as
-  // visible(p0, n0, p1, target, origin) of lane i (0 for inactive lanes).
+  // visible(p0, n0, p1, target, origin) of lane i, whose o0 is shadow_origin(p0, n0, p1) (0 for
+  // inactive lanes).
   void intersect(const RayPacket& rays, HitPacket& hits) const;
   struct ShadowPacket {
     static constexpr int kLanes = RayPacket::kLanes;
-    alignas(64) float p0x[kLanes], p0y[kLanes], p0z[kLanes];
-    alignas(64) float n0x[kLanes], n0y[kLanes], n0z[kLanes];
+    alignas(64) float o0x[kLanes], o0y[kLanes], o0z[kLanes];
     alignas(64) float p1x[kLanes], p1y[kLanes], p1z[kLanes];
     alignas(64) uint32_t target[kLanes], origin[kLanes];
     alignas(64) int32_t active[kLanes];

@@ -18,6 +18,7 @@ struct LanePaths {
   V3 beta, L;
   vf prev_pdf_w;
   vi prev_delta;
+  vf roulette_scale;
 };
 
 // The vertex each lane's ray found, gathered from the scene's tables (Scene::intersect).
@@ -25,6 +26,7 @@ struct LaneVertex {
   V3 p, n, albedo;
   vf t;
   vi prim, emitter;  // emitter -1: none
+  vi bsdf;           // kLaneLambertian, ...
 };
 
 // two_strategy_weight (strategies.h): MIS's power heuristic, or one strategy alone.
@@ -160,6 +162,7 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   v.p = barycentric_point(tri, v.prim, paths.active, load(hits.u), load(hits.v));
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
   v.albedo = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, albedo));
+  v.bsdf = gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, bsdf));
   return v;
 }
 
@@ -188,8 +191,9 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
   }
   counters.rays += count(shadow);
   Scene::ShadowPacket q;
-  store(q.p0x, v.p.x), store(q.p0y, v.p.y), store(q.p0z, v.p.z);
-  store(q.n0x, v.n.x), store(q.n0y, v.n.y), store(q.n0z, v.n.z);
+  // Scene::shadow_origin
+  const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  store(q.o0x, o0.x), store(q.o0y, o0.y), store(q.o0z, o0.z);
   store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
   store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
   store(q.active, shadow);
@@ -203,7 +207,10 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
 template <class Sampler>
 void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LaneNumbers<Sampler>& numbers,
                     LanePaths& paths, TraceCounters& counters) {
-  const vi active = paths.active;
+  // No light sample can meet a specular lobe.
+  counters.skipped_connections += count(paths.active & (v.bsdf != kLaneLambertian));
+  const vi active = paths.active & (v.bsdf == kLaneLambertian);
+  if (!any(active)) return;
   const vf u_select = numbers.next_1d(active);
   vf u, w;
   numbers.next_2d(active, u, w);
@@ -238,27 +245,77 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const V3& wo,
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
-// The lanes' BSDF samples (Lambertian `sample`, cosine-weighted) and Russian roulette: the next
-// segment's rays; lanes whose path ends there leave `active`.
+// A BSDF sample per lane: `sample` of each lane's member (bsdf.h), all three computed and the
+// lane's chosen.
+struct LaneBsdfSample {
+  V3 wi, weight;
+  vf pdf_w, eta;
+  vi ok;
+};
+
+// Lambertian: a cosine-weighted direction on wo's side.
+inline LaneBsdfSample sample_lambertian(const V3& albedo, const V3& wo, vf u1, vf u2) {
+  LaneBsdfSample s;
+  s.wi = square_to_cosine_hemisphere(u1, u2);
+  s.wi.z = select(wo.z < 0.f, -s.wi.z, s.wi.z);
+  s.pdf_w = cosine_hemisphere_pdf(abs(s.wi.z));
+  s.weight = albedo;
+  s.eta = splat(1.f);
+  s.ok = s.pdf_w > 0.f;
+  return s;
+}
+
+// Smooth dielectric of relative index eta: Fresnel-weighted reflection or refraction
+// (fresnel_dielectric, refract_local; radiance scales by 1 / eta_ratio^2 across).
+inline LaneBsdfSample sample_dielectric(vf eta, const V3& wo, vf u1) {
+  const vf eta_ratio = select(wo.z >= 0.f, eta, 1.f / eta);
+  const vf ci = min(abs(wo.z), splat(1.f));
+  const vf sin2_t = (1.f - ci * ci) / (eta_ratio * eta_ratio);
+  const vi total = sin2_t >= 1.f;
+  const vf ct = select(total, splat(0.f), sqrt(1.f - sin2_t));
+  const vf rs = (ci - eta_ratio * ct) / (ci + eta_ratio * ct);
+  const vf rp = (eta_ratio * ci - ct) / (eta_ratio * ci + ct);
+  const vf R = select(total, splat(1.f), 0.5f * (rs * rs + rp * rp));
+  const vi reflect = u1 < R;
+  const vf inv = 1.f / eta_ratio;
+  LaneBsdfSample s;
+  s.wi = select(reflect, V3{-wo.x, -wo.y, wo.z}, V3{-wo.x * inv, -wo.y * inv, select(wo.z > 0.f, -ct, ct)});
+  s.pdf_w = select(reflect, R, 1.f - R);
+  s.weight = select(reflect, splat(Vec3(1.f)), V3{inv * inv, inv * inv, inv * inv});
+  s.eta = select(reflect, splat(1.f), eta_ratio);
+  s.ok = reflect | (s.pdf_w > 0.f);
+  return s;
+}
+
+inline LaneBsdfSample select(vi m, const LaneBsdfSample& a, const LaneBsdfSample& b) {
+  return {select(m, a.wi, b.wi), select(m, a.weight, b.weight), select(m, a.pdf_w, b.pdf_w), select(m, a.eta, b.eta),
+          select(m, a.ok, b.ok)};
+}
+
+// The lanes' BSDF samples and Russian roulette (extend_path's `leave`): the next segment's rays;
+// lanes whose path ends there leave `active`.
 template <class Sampler>
 void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame, const V3& wo_local, int depth,
            LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
   vf u1, u2;
   numbers.next_2d(paths.active, u1, u2);
-  V3 wi = square_to_cosine_hemisphere(u1, u2);
-  wi.z = select(wo_local.z < 0.f, -wi.z, wi.z);
-  const vf pdf_w = cosine_hemisphere_pdf(abs(wi.z));
-  paths.active &= (wo_local.z != 0.f) & (pdf_w > 0.f);
-  paths.beta = paths.beta * v.albedo;
-  paths.prev_pdf_w = pdf_w;
-  paths.prev_delta = splat_i(0);
-  const V3 wi_world = frame.to_world(wi);
-  rays.o = offset_ray_origin(v.p, select(wi.z > 0.f, v.n, -v.n), ps.scene->offset_scale());
-  rays.d = wi_world;
+  const vi mirror = v.bsdf == kLaneMirror, dielectric = v.bsdf == kLaneDielectric;
+  LaneBsdfSample s = sample_lambertian(v.albedo, wo_local, u1, u2);
+  if (any(paths.active & (mirror | dielectric))) {
+    const LaneBsdfSample m{{-wo_local.x, -wo_local.y, wo_local.z}, v.albedo, splat(1.f), splat(1.f), splat_i(-1)};
+    s = select(mirror, m, select(dielectric, sample_dielectric(v.albedo.x, wo_local, u1), s));
+  }
+  paths.active &= (wo_local.z != 0.f) & s.ok;
+  paths.beta = paths.beta * s.weight;
+  paths.roulette_scale = paths.roulette_scale * (s.eta * s.eta * 1.f);  // roulette_scale, unguided
+  paths.prev_pdf_w = s.pdf_w;
+  paths.prev_delta = mirror | dielectric;
+  rays.o = offset_ray_origin(v.p, select(s.wi.z > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  rays.d = frame.to_world(s.wi);
   rays.tmin = splat(0.f);
   rays.tmax = splat(std::numeric_limits<float>::infinity());
   if (depth >= ps.options->rr_depth) {
-    const vf q = min(max_component(paths.beta), splat(0.95f));  // roulette_survival, scale 1
+    const vf q = min(max_component(paths.beta) * paths.roulette_scale, splat(0.95f));  // roulette_survival
     const vi go_on = numbers.next_1d(paths.active) < q;
     paths.active &= go_on;
     paths.beta = paths.beta / q;
@@ -267,7 +324,7 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame
 
 // extend_path for lanes [0, n) from their camera rays; out[i]: lane i's radiance estimate.
 template <class Sampler>
-void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x, const float* y, int n,
+[[gnu::flatten]] void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x, const float* y, int n,
                  TraceCounters& counters, Color* out) {
   alignas(64) float o[3][kLanes] = {}, d[3][kLanes] = {}, tmin[kLanes] = {}, tmax[kLanes] = {};
   alignas(64) int32_t active[kLanes] = {};
@@ -277,7 +334,7 @@ void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, cons
     tmin[i] = r.tmin, tmax[i] = r.tmax, active[i] = -1;
   }
   LaneRays rays{{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
-  LanePaths paths{load(active), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1)};
+  LanePaths paths{load(active), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1), splat(1.f)};
   LaneNumbers<Sampler> numbers{samplers};
   const int max_depth = ps.options->max_depth;
   const auto depth_allows = [&](int segments) { return max_depth < 0 || segments <= max_depth; };

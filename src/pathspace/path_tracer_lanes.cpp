@@ -17,7 +17,9 @@ std::string lanes_lack(const Scene& scene) {
   }
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
     const Material& m = scene.material(prim);
-    if (m.textured() || !std::holds_alternative<Lambertian>(m.bsdf)) return "materials other than untextured diffuse";
+    const bool covered = std::holds_alternative<Lambertian>(m.bsdf) || std::holds_alternative<Mirror>(m.bsdf) ||
+                         std::holds_alternative<Dielectric>(m.bsdf);
+    if (m.textured() || !covered) return "materials other than untextured diffuse, mirror or smooth glass";
     if (scene.smooth_shaded(prim)) return "vertex normals";
   }
   return "";
@@ -76,7 +78,14 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     LaneTriangle& t = ps.triangles[prim];
     for (int c = 0; c < 3; ++c) copy(scene.vertex(prim, c), t.p[c]);
     copy(scene.normal(prim), t.n);
-    copy(std::get<Lambertian>(scene.material(prim).bsdf).albedo, t.albedo);
+    const Bsdf& b = scene.material(prim).bsdf;
+    if (const auto* l = std::get_if<Lambertian>(&b)) {
+      copy(l->albedo, t.albedo), t.bsdf = kLaneLambertian;
+    } else if (const auto* m = std::get_if<Mirror>(&b)) {
+      copy(m->reflectance, t.albedo), t.bsdf = kLaneMirror;
+    } else {
+      copy(Vec3(std::get<Dielectric>(b).eta, 0.f, 0.f), t.albedo), t.bsdf = kLaneDielectric;
+    }
     const Emitter* e = scene.emitter_at(prim);
     t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
   }

@@ -10,8 +10,8 @@
 // hits (the same as its single-ray hits) and the same exact visibility test. So the image is the
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
-// It covers the scenes most research renders use: Lambertian materials without textures, flat
-// triangles, untextured area emitters, no environment, unguided. render_path falls back to the
+// It covers the scenes most research renders use: Lambertian, mirror and smooth dielectric
+// materials without textures, flat triangles, untextured area emitters, no environment, unguided. render_path falls back to the
 // scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
 #include <immintrin.h>
@@ -36,11 +36,14 @@ namespace dualight {
 
 // What the kernel gathers per triangle and per emitter, in one place each (a cache line per
 // triangle), copied from the scene with the values the scalar tracer reads.
+// The BSDFs the lanes run, each as the scalar member computes it.
+constexpr int32_t kLaneLambertian = 0, kLaneMirror = 1, kLaneDielectric = 2;
 struct LaneTriangle {
   float p[3][3];      // corners
   float n[3];         // unit geometric normal (= the shading normal: flat triangles only)
-  float albedo[3];    // the Lambertian's
+  float albedo[3];    // the Lambertian's albedo, the mirror's reflectance, the dielectric's eta (in [0])
   int32_t emitter;    // index into Scene::emitters(), -1: none
+  int32_t bsdf;       // kLaneLambertian, kLaneMirror or kLaneDielectric
 };
 struct LaneEmitter {
   float p[3][3];  // corners

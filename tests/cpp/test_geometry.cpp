@@ -208,6 +208,7 @@ TEST_CASE("ray_packets_find_what_single_rays_find") {
   for (int round = 0; round < 64; ++round) {
     RayPacket rays;
     Scene::ShadowPacket shadows;
+    Vec3 p0s[RayPacket::kLanes], n0s[RayPacket::kLanes];
     for (int i = 0; i < RayPacket::kLanes; ++i) {
       const Vec3 o{0.1f + 0.8f * sampler.next_1d(), 0.1f + 0.8f * sampler.next_1d(), 0.1f + 0.8f * sampler.next_1d()};
       const Vec3 d = normalize(Vec3{sampler.next_1d() - 0.5f, sampler.next_1d() - 0.5f, sampler.next_1d() - 0.5f});
@@ -216,8 +217,9 @@ TEST_CASE("ray_packets_find_what_single_rays_find") {
       const uint32_t origin = static_cast<uint32_t>(sampler.next_1d() * 12.f);
       const Vec3 p0 = scene.vertex(origin, 0) * 0.25f + scene.vertex(origin, 1) * 0.35f + scene.vertex(origin, 2) * 0.4f;
       const Vec3 n0 = scene.normal(origin), p1{0.45f + 0.1f * sampler.next_1d(), 0.95f, 0.45f + 0.1f * sampler.next_1d()};
-      shadows.p0x[i] = p0.x, shadows.p0y[i] = p0.y, shadows.p0z[i] = p0.z;
-      shadows.n0x[i] = n0.x, shadows.n0y[i] = n0.y, shadows.n0z[i] = n0.z;
+      p0s[i] = p0, n0s[i] = n0;
+      const Vec3 o0 = scene.shadow_origin(p0, n0, p1);
+      shadows.o0x[i] = o0.x, shadows.o0y[i] = o0.y, shadows.o0z[i] = o0.z;
       shadows.p1x[i] = p1.x, shadows.p1y[i] = p1.y, shadows.p1z[i] = p1.z;
       shadows.target[i] = 12, shadows.origin[i] = origin, shadows.active[i] = rays.active[i];
     }
@@ -233,8 +235,7 @@ TEST_CASE("ray_packets_find_what_single_rays_find") {
         CHECK(hits.prim[i] == hit.prim);
         CHECK(hits.t[i] == hit.t);
       }
-      const bool visible = rays.active[i] != 0 && scene.visible({shadows.p0x[i], shadows.p0y[i], shadows.p0z[i]},
-                                                                  {shadows.n0x[i], shadows.n0y[i], shadows.n0z[i]},
+      const bool visible = rays.active[i] != 0 && scene.visible(p0s[i], n0s[i],
                                                                   {shadows.p1x[i], shadows.p1y[i], shadows.p1z[i]}, 12,
                                                                   shadows.origin[i]);
       CHECK(visible == (seen[i] != 0));
