@@ -152,14 +152,18 @@ bool packet_valid(const RayPacket& rays, int* valid) {
 struct EmbreeAccel::Impl {
   DeviceHandle device;
   SceneHandle scene;
+  // rtcIntersect16 and rtcOccluded16 need a CPU (and an Embree build) with AVX-512: elsewhere
+  // packets are traced lane by lane, with the same results.
+  bool packets16 = false;
 };
 
 EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                         bool robust)
+                         bool robust, bool packets)
     : impl_(std::make_unique<Impl>()) {
   impl_->device.reset(rtcNewDevice(nullptr));
   if (!impl_->device) throw std::runtime_error("could not create an Embree device");
   RTCDevice device = impl_->device.get();
+  impl_->packets16 = packets && rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
   impl_->scene.reset(rtcNewScene(device));
   RTCScene scene = impl_->scene.get();
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
@@ -232,6 +236,14 @@ bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
 void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
   alignas(64) int valid[RayPacket::kLanes];
   for (uint32_t& p : hits.prim) p = RayHit::kNoHit;
+  if (!impl_->packets16) {
+    for (int i = 0; i < RayPacket::kLanes; ++i) {
+      if (rays.active[i] == 0) continue;
+      const RayHit h = intersect(rays.ray(i));
+      hits.t[i] = h.t, hits.u[i] = h.u, hits.v[i] = h.v, hits.prim[i] = h.prim;
+    }
+    return;
+  }
   if (!packet_valid(rays, valid)) return;
   alignas(64) RTCRayHit16 rh;
   fill_packet(rays, rh.ray);
@@ -259,6 +271,12 @@ void EmbreeAccel::occluded(const RayPacket& rays, const HitFilter* const* filter
   alignas(64) int valid[RayPacket::kLanes];
   // Rays Embree would not accept count as occluded, as in occluded() above.
   for (int i = 0; i < RayPacket::kLanes; ++i) blocked[i] = rays.active[i] != 0 ? 1 : 0;
+  if (!impl_->packets16) {
+    for (int i = 0; i < RayPacket::kLanes; ++i) {
+      if (rays.active[i] != 0) blocked[i] = occluded(rays.ray(i), filters != nullptr ? filters[i] : nullptr) ? 1 : 0;
+    }
+    return;
+  }
   if (!packet_valid(rays, valid)) return;
   alignas(64) RTCRay16 r;
   fill_packet(rays, r);

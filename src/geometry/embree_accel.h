@@ -51,7 +51,10 @@ class EmbreeAccel {
   // lower its arithmetic accuracy: no ray slips through where triangles meet. Without it rays
   // trace 24-30 % faster but leak through the edges of closed meshes (Mitsuba 3's default, its
   // scene's embree_use_robust_intersections = false).
-  EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles, bool robust = true);
+  // packets: trace packets with Embree's 16-wide queries where the CPU has them (false: lane by
+  // lane always, as on CPUs without AVX-512; for tests).
+  EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles, bool robust = true,
+              bool packets = true);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
