@@ -29,9 +29,9 @@ Strategies = Literal["mis", "bsdf", "light"]
 """``render(strategies=...)``: the path tracer's and BDPT's sampling strategies, all combined
 by MIS or one alone, the core's ``Strategies`` names."""
 Lanes = Literal["auto", "off", "sse2", "avx2", "avx512"]
-"""``render(lanes=...)``: whether the path tracer runs sixteen paths at a time in SIMD lanes
-(``"auto"``: with AVX-512, where the CPU and the scene allow), one at a time (``"off"``), or on
-a given instruction set; the core's ``LaneIsa`` names."""
+"""``render(lanes=...)``: whether the path tracer runs a tile row's paths together in SIMD lanes
+(``"auto"``: with AVX-512 or AVX2, where the CPU and the scene allow), one at a time
+(``"off"``), or on a given instruction set; the core's ``LaneIsa`` names."""
 RadiosityMethod = Literal["direct", "jacobi", "gauss_seidel", "southwell", "hierarchical"]
 """A method of :func:`dualight.radiosity.solve`."""
 

@@ -335,15 +335,15 @@ def render(
         skips the shadow rays that ``"bsdf"`` would weight 0; BDPT still evaluates every
         connection.
     lanes:
-        ``"path"`` only: ``"auto"`` (the default) runs sixteen paths at a time, the pixels of
-        a tile's row, with their rays traced as Embree packets and their shading in AVX-512
-        lanes, where the CPU has AVX-512 and the scene allows it: diffuse untextured
-        materials, flat triangles, area emitters, no environment, unguided. ``"off"`` runs
-        one path at a time; ``"sse2"``, ``"avx2"`` and ``"avx512"`` ask for one build (a
-        ``ValueError`` where the CPU lacks it; the narrower two run slower than one path at a
-        time and serve checks). The image is the same, bit for bit, whichever runs: only the
-        speed differs. ``image.stats["lanes"]`` says which ran (``"off"`` with
-        ``["lanes_off_because"]``).
+        ``"path"`` only: ``"auto"`` (the default) runs the paths of a tile's row (sixteen
+        pixels) together, their rays traced as Embree packets and their shading in SIMD lanes,
+        on AVX-512 or else AVX2 where the CPU has it and the scene allows it: diffuse, mirror
+        and smooth glass materials without textures, flat triangles, area emitters without
+        textures, no environment, unguided. ``"off"`` runs one path at a time; ``"sse2"``,
+        ``"avx2"`` and ``"avx512"`` ask for one build (a ``ValueError`` where the CPU lacks
+        it; the SSE2 build runs slower than one path at a time and serves checks). The image
+        is the same, bit for bit, whichever runs: only the speed differs.
+        ``image.stats["lanes"]`` says which ran (``"off"`` with ``["lanes_off_because"]``).
     strategy_images:
         BDPT only, with a bounded ``max_depth``: also return each strategy's MIS-weighted
         contribution as ``image.strategies[(s, t)]`` (H x W x 3 arrays; ``s`` light vertices,

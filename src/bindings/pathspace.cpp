@@ -39,9 +39,9 @@ void bind_pathspace(py::module_& m) {
              "mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone "
              "(the other only where it alone can find the light).");
   path.field("lanes", &PathTracerOptions::lanes,
-             "auto: sixteen paths at a time in SIMD lanes where the CPU runs AVX-512 and the scene "
-             "allows (diffuse, untextured, flat, area emitters); off: one path at a time; sse2, avx2 "
-             "or avx512: that build. The image is the same, bit for bit.");
+             "auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and "
+             "the scene allows (diffuse, mirror or smooth glass, untextured, flat, area emitters); off: one "
+             "path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.");
   add_guiding_fields(path);
   path.bind();
 

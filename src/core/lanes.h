@@ -1,5 +1,6 @@
-// Sixteen lanes of float and int32 (GCC's vector extensions) for code that runs one sample per
-// lane (pathspace/path_lanes_kernel.h). Deliberately without include guard or includes: only
+// Lanes of float and int32 (GCC's vector extensions), as many as one register holds (16 with
+// AVX-512, 8 with AVX2, 4 with SSE2), for code that runs one sample per lane
+// (pathspace/path_lanes_kernel.h). Deliberately without include guard or includes: only
 // the per-ISA translation units include it, after their `#pragma GCC target` and with
 // DUALIGHT_LANES_NS naming their namespace and DUALIGHT_LANES_BITS their vector width, so
 // each gets its own copy compiled for its instruction set (the headers it needs are included
@@ -11,7 +12,7 @@
 
 namespace dualight::DUALIGHT_LANES_NS {
 
-constexpr int kLanes = 16;
+constexpr int kLanes = DUALIGHT_LANES_BITS / 32;
 using vf = float __attribute__((vector_size(4 * kLanes)));
 using vi = int32_t __attribute__((vector_size(4 * kLanes)));  // masks: -1 true, 0 false
 
@@ -35,21 +36,11 @@ inline vi select(vi m, vi a, vi b) { return m ? a : b; }
 // Bit i: lane i of mask m is true.
 inline uint32_t lane_bits(vi m) {
 #if DUALIGHT_LANES_BITS == 512
-  __m512i v;
-  std::memcpy(&v, &m, sizeof v);
-  return _mm512_test_epi32_mask(v, v);
+  return _mm512_test_epi32_mask((__m512i)m, (__m512i)m);
 #elif DUALIGHT_LANES_BITS == 256
-  uint32_t b = 0;
-  for (int k = 0; k < kLanes; k += 8) {
-    b |= static_cast<uint32_t>(_mm256_movemask_ps(_mm256_loadu_ps(reinterpret_cast<const float*>(&m) + k))) << k;
-  }
-  return b;
+  return static_cast<uint32_t>(_mm256_movemask_ps((__m256)m));
 #else
-  uint32_t b = 0;
-  for (int k = 0; k < kLanes; k += 4) {
-    b |= static_cast<uint32_t>(_mm_movemask_ps(_mm_loadu_ps(reinterpret_cast<const float*>(&m) + k))) << k;
-  }
-  return b;
+  return static_cast<uint32_t>(_mm_movemask_ps((__m128)m));
 #endif
 }
 inline bool any(vi m) { return lane_bits(m) != 0; }
@@ -64,42 +55,21 @@ inline vf max(vf a, vf b) { return select(a < b, b, a); }  // std::max
 inline vf min(vf a, vf b) { return select(b < a, b, a); }  // std::min
 
 inline vf sqrt(vf x) {
-  vf r;
 #if DUALIGHT_LANES_BITS == 512
-  __m512 v;
-  std::memcpy(&v, &x, sizeof v);
-  v = _mm512_sqrt_ps(v);
-  std::memcpy(&r, &v, sizeof r);
+  return (vf)_mm512_sqrt_ps((__m512)x);
 #elif DUALIGHT_LANES_BITS == 256
-  for (int k = 0; k < kLanes; k += 8) {
-    __m256 v = _mm256_loadu_ps(reinterpret_cast<const float*>(&x) + k);
-    _mm256_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm256_sqrt_ps(v));
-  }
+  return (vf)_mm256_sqrt_ps((__m256)x);
 #else
-  for (int k = 0; k < kLanes; k += 4) {
-    __m128 v = _mm_loadu_ps(reinterpret_cast<const float*>(&x) + k);
-    _mm_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm_sqrt_ps(v));
-  }
+  return (vf)_mm_sqrt_ps((__m128)x);
 #endif
-  return r;
 }
 
 // base[index[i]] for each lane (index 0 where a lane has nothing to read: the tables are not empty).
 inline vf gather(const float* base, vi index) {
 #if DUALIGHT_LANES_BITS == 512
-  __m512i i;
-  std::memcpy(&i, &index, sizeof i);
-  const __m512 g = _mm512_i32gather_ps(i, base, 4);
-  vf r;
-  std::memcpy(&r, &g, sizeof r);
-  return r;
+  return (vf)_mm512_i32gather_ps((__m512i)index, base, 4);
 #elif DUALIGHT_LANES_BITS == 256
-  vf r;
-  for (int k = 0; k < kLanes; k += 8) {
-    const __m256i i = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(reinterpret_cast<const int32_t*>(&index) + k));
-    _mm256_storeu_ps(reinterpret_cast<float*>(&r) + k, _mm256_i32gather_ps(base, i, 4));
-  }
-  return r;
+  return (vf)_mm256_i32gather_ps(base, (__m256i)index, 4);
 #else
   vf r;
   for (int k = 0; k < kLanes; ++k) r[k] = base[index[k]];
@@ -107,8 +77,8 @@ inline vf gather(const float* base, vi index) {
 #endif
 }
 
-// Sixteen PCG32 generators (core/rng.h) stepped together: lane i yields what its own Pcg32
-// would, where `active` (the others do not advance).
+// PCG32 generators (core/rng.h), one per lane, stepped together: lane i yields what its own
+// Pcg32 would, where `active` (the others do not advance).
 using vu = uint32_t __attribute__((vector_size(4 * kLanes)));
 using vu64 = uint64_t __attribute__((vector_size(8 * kLanes)));
 using vi64 = int64_t __attribute__((vector_size(8 * kLanes)));

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #if __has_include(<embree4/rtcore.h>)
 #include <embree4/rtcore.h>
@@ -111,22 +112,102 @@ void init_context(FilterContext& fc, bool filtered) {
 }
 #endif
 
-// A packet of rays as Embree's RTCRay16; the ids let the filter find each lane's filter.
-void fill_packet(const RayPacket& rays, RTCRay16& r) {
-  constexpr size_t bytes = sizeof(float) * RayPacket::kLanes;
-  std::memcpy(r.org_x, rays.ox, bytes);
-  std::memcpy(r.org_y, rays.oy, bytes);
-  std::memcpy(r.org_z, rays.oz, bytes);
-  std::memcpy(r.dir_x, rays.dx, bytes);
-  std::memcpy(r.dir_y, rays.dy, bytes);
-  std::memcpy(r.dir_z, rays.dz, bytes);
-  std::memcpy(r.tnear, rays.tmin, bytes);
-  std::memcpy(r.tfar, rays.tmax, bytes);
-  for (int i = 0; i < RayPacket::kLanes; ++i) {
+// Lanes [first, first + K) of a packet as Embree's RTCRay16 or RTCRay8; each ray's id is its
+// lane in the whole packet, so the filter finds the lane's filter.
+template <class RayK, int K>
+void fill_lanes(const RayPacket& rays, int first, RayK& r) {
+  constexpr size_t bytes = sizeof(float) * K;
+  std::memcpy(r.org_x, rays.ox + first, bytes);
+  std::memcpy(r.org_y, rays.oy + first, bytes);
+  std::memcpy(r.org_z, rays.oz + first, bytes);
+  std::memcpy(r.dir_x, rays.dx + first, bytes);
+  std::memcpy(r.dir_y, rays.dy + first, bytes);
+  std::memcpy(r.dir_z, rays.dz + first, bytes);
+  std::memcpy(r.tnear, rays.tmin + first, bytes);
+  std::memcpy(r.tfar, rays.tmax + first, bytes);
+  for (int i = 0; i < K; ++i) {
     r.time[i] = 0.f;
     r.mask[i] = 0xffffffffu;
-    r.id[i] = static_cast<unsigned>(i);
+    r.id[i] = static_cast<unsigned>(first + i);
     r.flags[i] = 0;
+  }
+}
+
+void rtc_intersect(const int* valid, RTCScene scene, RTCRayHit16* rh) {
+#if DUALIGHT_EMBREE4
+  rtcIntersect16(valid, scene, rh);
+#else
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect16(valid, scene, &ctx, rh);
+#endif
+}
+void rtc_intersect(const int* valid, RTCScene scene, RTCRayHit8* rh) {
+#if DUALIGHT_EMBREE4
+  rtcIntersect8(valid, scene, rh);
+#else
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect8(valid, scene, &ctx, rh);
+#endif
+}
+void rtc_occluded(const int* valid, RTCScene scene, RTCRay16* r, FilterContext& fc, bool filtered) {
+#if DUALIGHT_EMBREE4
+  RTCOccludedArguments args = occluded_arguments(fc, filtered);
+  rtcOccluded16(valid, scene, r, &args);
+#else
+  init_context(fc, filtered);
+  rtcOccluded16(valid, scene, &fc.context, r);
+#endif
+}
+void rtc_occluded(const int* valid, RTCScene scene, RTCRay8* r, FilterContext& fc, bool filtered) {
+#if DUALIGHT_EMBREE4
+  RTCOccludedArguments args = occluded_arguments(fc, filtered);
+  rtcOccluded8(valid, scene, r, &args);
+#else
+  init_context(fc, filtered);
+  rtcOccluded8(valid, scene, &fc.context, r);
+#endif
+}
+
+bool any_valid(const int* valid, int n) {
+  int any = 0;
+  for (int i = 0; i < n; ++i) any |= valid[i];
+  return any != 0;
+}
+
+// The closest hits of lanes [first, first + K) (valid: the whole packet's mask).
+template <class RayHitK, int K>
+void intersect_lanes(RTCScene scene, const RayPacket& rays, const int* valid, int first, HitPacket& hits) {
+  if (!any_valid(valid + first, K)) return;
+  alignas(64) RayHitK rh;
+  fill_lanes<decltype(rh.ray), K>(rays, first, rh.ray);
+  for (int i = 0; i < K; ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtc_intersect(valid + first, scene, &rh);
+  for (int i = 0; i < K; ++i) {
+    if (valid[first + i] == 0 || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    hits.t[first + i] = rh.ray.tfar[i];
+    hits.u[first + i] = rh.hit.u[i];
+    hits.v[first + i] = rh.hit.v[i];
+    hits.prim[first + i] = rh.hit.primID[i];
+  }
+}
+
+// Occlusion of lanes [first, first + K), through each lane's filter.
+template <class RayK, int K>
+void occluded_lanes(RTCScene scene, const RayPacket& rays, const HitFilter* const* filters, const int* valid,
+                    int first, int32_t* blocked) {
+  if (!any_valid(valid + first, K)) return;
+  alignas(64) RayK r;
+  fill_lanes<RayK, K>(rays, first, r);
+  FilterContext fc{};
+  fc.lane_filters = filters;
+  rtc_occluded(valid + first, scene, &r, fc, filters != nullptr);
+  for (int i = 0; i < K; ++i) {
+    if (valid[first + i] != 0) blocked[first + i] = r.tfar[i] < 0.f ? 1 : 0;
   }
 }
 
@@ -152,18 +233,24 @@ bool packet_valid(const RayPacket& rays, int* valid) {
 struct EmbreeAccel::Impl {
   DeviceHandle device;
   SceneHandle scene;
-  // rtcIntersect16 and rtcOccluded16 need a CPU (and an Embree build) with AVX-512: elsewhere
-  // packets are traced lane by lane, with the same results.
-  bool packets16 = false;
+  // Embree's widest packet queries this CPU (and Embree's build) runs: 16 needs AVX-512, 8 AVX;
+  // 1: lane by lane. Every width gives the same results.
+  int packet_width = 1;
 };
 
 EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                         bool robust, bool packets)
+                         bool robust, int max_packet)
     : impl_(std::make_unique<Impl>()) {
   impl_->device.reset(rtcNewDevice(nullptr));
   if (!impl_->device) throw std::runtime_error("could not create an Embree device");
   RTCDevice device = impl_->device.get();
-  impl_->packets16 = packets && rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+  for (const auto& [width, property] : {std::pair{16, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED},
+                                         std::pair{8, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED}}) {
+    if (width <= max_packet && rtcGetDeviceProperty(device, property) != 0) {
+      impl_->packet_width = width;
+      break;
+    }
+  }
   impl_->scene.reset(rtcNewScene(device));
   RTCScene scene = impl_->scene.get();
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
@@ -234,9 +321,8 @@ bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
 }
 
 void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
-  alignas(64) int valid[RayPacket::kLanes];
   for (uint32_t& p : hits.prim) p = RayHit::kNoHit;
-  if (!impl_->packets16) {
+  if (impl_->packet_width == 1) {
     for (int i = 0; i < RayPacket::kLanes; ++i) {
       if (rays.active[i] == 0) continue;
       const RayHit h = intersect(rays.ray(i));
@@ -244,53 +330,34 @@ void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
     }
     return;
   }
+  alignas(64) int valid[RayPacket::kLanes];
   if (!packet_valid(rays, valid)) return;
-  alignas(64) RTCRayHit16 rh;
-  fill_packet(rays, rh.ray);
-  for (int i = 0; i < RayPacket::kLanes; ++i) {
-    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-  }
-#if DUALIGHT_EMBREE4
-  rtcIntersect16(valid, impl_->scene.get(), &rh);
-#else
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect16(valid, impl_->scene.get(), &ctx, &rh);
-#endif
-  for (int i = 0; i < RayPacket::kLanes; ++i) {
-    if (valid[i] == 0 || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-    hits.t[i] = rh.ray.tfar[i];
-    hits.u[i] = rh.hit.u[i];
-    hits.v[i] = rh.hit.v[i];
-    hits.prim[i] = rh.hit.primID[i];
+  if (impl_->packet_width == 16) {
+    intersect_lanes<RTCRayHit16, 16>(impl_->scene.get(), rays, valid, 0, hits);
+  } else {
+    for (int first = 0; first < RayPacket::kLanes; first += 8) {
+      intersect_lanes<RTCRayHit8, 8>(impl_->scene.get(), rays, valid, first, hits);
+    }
   }
 }
 
 void EmbreeAccel::occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const {
-  alignas(64) int valid[RayPacket::kLanes];
   // Rays Embree would not accept count as occluded, as in occluded() above.
   for (int i = 0; i < RayPacket::kLanes; ++i) blocked[i] = rays.active[i] != 0 ? 1 : 0;
-  if (!impl_->packets16) {
+  if (impl_->packet_width == 1) {
     for (int i = 0; i < RayPacket::kLanes; ++i) {
       if (rays.active[i] != 0) blocked[i] = occluded(rays.ray(i), filters != nullptr ? filters[i] : nullptr) ? 1 : 0;
     }
     return;
   }
+  alignas(64) int valid[RayPacket::kLanes];
   if (!packet_valid(rays, valid)) return;
-  alignas(64) RTCRay16 r;
-  fill_packet(rays, r);
-  FilterContext fc{};
-  fc.lane_filters = filters;
-#if DUALIGHT_EMBREE4
-  RTCOccludedArguments args = occluded_arguments(fc, filters != nullptr);
-  rtcOccluded16(valid, impl_->scene.get(), &r, &args);
-#else
-  init_context(fc, filters != nullptr);
-  rtcOccluded16(valid, impl_->scene.get(), &fc.context, &r);
-#endif
-  for (int i = 0; i < RayPacket::kLanes; ++i) {
-    if (valid[i] != 0) blocked[i] = r.tfar[i] < 0.f ? 1 : 0;
+  if (impl_->packet_width == 16) {
+    occluded_lanes<RTCRay16, 16>(impl_->scene.get(), rays, filters, valid, 0, blocked);
+  } else {
+    for (int first = 0; first < RayPacket::kLanes; first += 8) {
+      occluded_lanes<RTCRay8, 8>(impl_->scene.get(), rays, filters, valid, first, blocked);
+    }
   }
 }
 

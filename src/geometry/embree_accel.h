@@ -51,10 +51,10 @@ class EmbreeAccel {
   // lower its arithmetic accuracy: no ray slips through where triangles meet. Without it rays
   // trace 24-30 % faster but leak through the edges of closed meshes (Mitsuba 3's default, its
   // scene's embree_use_robust_intersections = false).
-  // packets: trace packets with Embree's 16-wide queries where the CPU has them (false: lane by
-  // lane always, as on CPUs without AVX-512; for tests).
+  // max_packet: the widest of Embree's packet queries to use where the CPU has them (16 with
+  // AVX-512, 8 with AVX; 1: lane by lane). Less than 16 is for tests: every width finds the same.
   EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles, bool robust = true,
-              bool packets = true);
+              int max_packet = 16);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;

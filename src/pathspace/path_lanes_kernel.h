@@ -65,13 +65,16 @@ V3 barycentric_point(const Table* table, vi index, vi active, vf b1, vf b2) {
 }
 
 // The lanes' random numbers: each lane's own sampler, one lane at a time...
+// (Lane i runs on *samplers[first + i].)
 template <class Sampler>
 struct LaneNumbers {
   LaneSamplers<Sampler>& samplers;
+  size_t first;
+  LaneNumbers(LaneSamplers<Sampler>& s, size_t first_lane) : samplers(s), first(first_lane) {}
   vf next_1d(vi active) {
     alignas(64) float u[kLanes] = {};
     for (int i = 0; i < kLanes; ++i) {
-      if (active[i] != 0) u[i] = samplers[static_cast<size_t>(i)]->next_1d();
+      if (active[i] != 0) u[i] = samplers[first + static_cast<size_t>(i)]->next_1d();
     }
     return load(u);
   }
@@ -79,7 +82,7 @@ struct LaneNumbers {
     alignas(64) float a[kLanes] = {}, b[kLanes] = {};
     for (int i = 0; i < kLanes; ++i) {
       if (active[i] == 0) continue;
-      const Point2 p = samplers[static_cast<size_t>(i)]->next_2d();
+      const Point2 p = samplers[first + static_cast<size_t>(i)]->next_2d();
       a[i] = p.u, b[i] = p.v;
     }
     u = load(a), v = load(b);
@@ -89,9 +92,9 @@ struct LaneNumbers {
 template <>
 struct LaneNumbers<IndependentSampler> {
   LanePcg32 rng{};
-  explicit LaneNumbers(LaneSamplers<IndependentSampler>& samplers) {
+  LaneNumbers(LaneSamplers<IndependentSampler>& samplers, size_t first) {
     for (int i = 0; i < kLanes; ++i) {
-      const auto& s = samplers[static_cast<size_t>(i)];
+      const auto& s = samplers[first + static_cast<size_t>(i)];
       rng.state[i] = s ? s->rng().state() : 0u;
       rng.inc[i] = s ? s->rng().increment() : 1u;
     }
@@ -147,6 +150,7 @@ inline V3 offset_ray_origin(const V3& p, const V3& n, float scene_scale) {
 // Scene::intersect for the active lanes: those that find nothing end (no environment).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
   RayPacket packet;
+  if constexpr (kLanes < RayPacket::kLanes) std::fill(std::begin(packet.active), std::end(packet.active), 0);
   store(packet.ox, r.o.x), store(packet.oy, r.o.y), store(packet.oz, r.o.z);
   store(packet.dx, r.d.x), store(packet.dy, r.d.y), store(packet.dz, r.d.z);
   store(packet.tmin, r.tmin), store(packet.tmax, r.tmax), store(packet.active, paths.active);
@@ -191,13 +195,14 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
   }
   counters.rays += count(shadow);
   Scene::ShadowPacket q;
+  if constexpr (kLanes < RayPacket::kLanes) std::fill(std::begin(q.active), std::end(q.active), 0);
   // Scene::shadow_origin
   const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
   store(q.o0x, o0.x), store(q.o0y, o0.y), store(q.o0z, o0.z);
   store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
   store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
   store(q.active, shadow);
-  alignas(64) int32_t seen[kLanes];
+  alignas(64) int32_t seen[RayPacket::kLanes];
   ps.scene->visible(q, seen);
   return load(seen) != 0;
 }
@@ -322,10 +327,11 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame
   }
 }
 
-// extend_path for lanes [0, n) from their camera rays; out[i]: lane i's radiance estimate.
+// extend_path for lanes [first, first + n) of a row (n <= kLanes) from their camera rays;
+// out[i]: lane first + i's radiance estimate.
 template <class Sampler>
-[[gnu::flatten]] void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x, const float* y, int n,
-                 TraceCounters& counters, Color* out) {
+void trace_lanes(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, size_t first, const float* x,
+                 const float* y, int n, TraceCounters& counters, Color* out) {
   alignas(64) float o[3][kLanes] = {}, d[3][kLanes] = {}, tmin[kLanes] = {}, tmax[kLanes] = {};
   alignas(64) int32_t active[kLanes] = {};
   for (int i = 0; i < n; ++i) {
@@ -335,7 +341,7 @@ template <class Sampler>
   }
   LaneRays rays{{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
   LanePaths paths{load(active), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1), splat(1.f)};
-  LaneNumbers<Sampler> numbers{samplers};
+  LaneNumbers<Sampler> numbers(samplers, first);
   const int max_depth = ps.options->max_depth;
   const auto depth_allows = [&](int segments) { return max_depth < 0 || segments <= max_depth; };
   for (int depth = 1; depth_allows(depth) && any(paths.active); ++depth) {
@@ -351,6 +357,16 @@ template <class Sampler>
   alignas(64) float L[3][kLanes];
   store(L[0], paths.L.x), store(L[1], paths.L.y), store(L[2], paths.L.z);
   for (int i = 0; i < n; ++i) out[i] = Color(L[0][i], L[1][i], L[2][i]);
+}
+
+// TracePathLanes (path_tracer_lanes.h): the row's lanes, kLanes at a time.
+template <class Sampler>
+[[gnu::flatten]] void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x,
+                                  const float* y, int n, TraceCounters& counters, Color* out) {
+  for (int first = 0; first < n; first += kLanes) {
+    trace_lanes(ps, samplers, static_cast<size_t>(first), x + first, y + first, std::min(kLanes, n - first), counters,
+                out + first);
+  }
 }
 
 }  // namespace dualight::DUALIGHT_LANES_NS

@@ -60,11 +60,13 @@ PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& o
   std::string lack = lanes_lack(scene);
   if (!lack.empty()) return {std::nullopt, "the scene has " + lack};
   if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
-  // Sixteen lanes fill one AVX-512 register. The narrower builds split every value over two or
-  // four registers and run slower than one path at a time (Cornell box, one thread: AVX2 0.61
-  // M samples/s against 1.03), so they are there for checks, not chosen.
-  if (cpu_runs(LaneIsa::Avx512)) return {kernels_for(LaneIsa::Avx512), ""};
-  return {std::nullopt, "this CPU lacks AVX-512 (the narrower builds are slower than one path at a time)"};
+  // AVX-512, else AVX2 (with Embree's 8-wide packets there). The SSE2 build, whose rays go to
+  // Embree one at a time on CPUs without AVX, ran slower than one path at a time on the Cornell
+  // box: it is there for checks, not chosen.
+  for (const LaneIsa isa : {LaneIsa::Avx512, LaneIsa::Avx2}) {
+    if (cpu_runs(isa)) return {kernels_for(isa), ""};
+  }
+  return {std::nullopt, "this CPU lacks AVX2 (the SSE2 build is slower than one path at a time)"};
 }
 
 PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera, const PathTracerOptions& options) {

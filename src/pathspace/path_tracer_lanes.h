@@ -1,8 +1,8 @@
-// The path tracer in lanes: sixteen camera paths (the pixels of a tile's row, at one sample
+// The path tracer in lanes: the camera paths of a tile's row (sixteen pixels, at one sample
 // index) advance together, their rays traced as Embree packets and their shading computed in
-// SIMD lanes (core/lanes.h), compiled for SSE2, AVX2 and AVX-512 and chosen at run time by what
-// the CPU supports (only AVX-512 by default: see choose_path_lanes). As in Mitsuba 3's
-// vectorised variants, lanes are paths, not rays of one path.
+// SIMD lanes (core/lanes.h: sixteen at a time with AVX-512, eight with AVX2, four with SSE2),
+// compiled for each and chosen at run time by what the CPU supports (AVX-512, else AVX2: see
+// choose_path_lanes). As in Mitsuba 3's vectorised variants, lanes are paths, not rays of one path.
 //
 // Each lane computes exactly what the scalar path tracer (path_tracer.cpp) computes for its
 // sample: the same sampler (seed, pixel, sample index), the same numbers drawn in the same
@@ -16,10 +16,12 @@
 #pragma once
 #include <immintrin.h>
 
+#include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -82,8 +84,8 @@ PathLanesKernels path_lanes_kernels_sse2();
 PathLanesKernels path_lanes_kernels_avx2();
 PathLanesKernels path_lanes_kernels_avx512();
 
-// The kernels options.lanes names (Auto: AVX-512 where the CPU runs it), or none (Off, a
-// guided render, a scene the lanes do not cover, or Auto on a CPU without AVX-512: why_not
+// The kernels options.lanes names (Auto: AVX-512, else AVX2, where the CPU runs it), or none
+// (Off, a guided render, a scene the lanes do not cover, or Auto on a CPU without AVX2: why_not
 // says which). Throws std::invalid_argument for an instruction set this CPU lacks.
 struct PathLanesChoice {
   std::optional<PathLanesKernels> kernels;

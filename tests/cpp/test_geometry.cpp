@@ -243,31 +243,36 @@ TEST_CASE("ray_packets_find_what_single_rays_find") {
   }
 }
 
-TEST_CASE("ray_packets_traced_lane_by_lane_find_the_same") {
-  // Where the CPU lacks Embree's 16-wide queries, packets go lane by lane: the same hits and
-  // occlusion as the packet queries (forced here on any CPU).
+TEST_CASE("ray_packets_of_every_width_find_the_same") {
+  // Where the CPU lacks Embree's 16-wide queries, packets go as two of 8 or lane by lane: the
+  // same hits and occlusion as the 16-wide queries (the narrower widths forced here).
   const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1, 1, 0, -1, 0, 1, -1};
   const std::vector<uint32_t> t = {0, 1, 2, 3, 4, 5};
-  const EmbreeAccel packets(p, t), lanes(p, t, true, false);
   const HitFilter ignore_first{[](const void*, uint32_t prim, float) { return prim == 0; }, nullptr};
   const HitFilter* filters[RayPacket::kLanes] = {};
   RayPacket rays;
   for (int i = 0; i < RayPacket::kLanes; ++i) {
     const float x = 0.05f * static_cast<float>(i);
     rays.set(i, Ray{{x, 0.1f, 1.f}, {0.f, 0.f, -1.f}, i % 3 == 0 ? 1.5f : 2.5f});
-    rays.active[i] = i == 5 ? 0 : 1;
+    rays.active[i] = i == 5 || i >= 12 ? 0 : 1;  // the second half of 8 lanes partly active
     filters[i] = i % 2 == 0 ? &ignore_first : nullptr;
   }
-  HitPacket a, b;
-  packets.intersect(rays, a);
-  lanes.intersect(rays, b);
-  int32_t blocked_a[RayPacket::kLanes], blocked_b[RayPacket::kLanes];
-  packets.occluded(rays, filters, blocked_a);
-  lanes.occluded(rays, filters, blocked_b);
-  for (int i = 0; i < RayPacket::kLanes; ++i) {
-    CHECK(a.prim[i] == b.prim[i]);
-    if (a.prim[i] != RayHit::kNoHit) CHECK(a.t[i] == b.t[i]);
-    CHECK(blocked_a[i] == blocked_b[i]);
-    CHECK(blocked_a[i] == (rays.active[i] != 0 && lanes.occluded(rays.ray(i), filters[i])));
+  const EmbreeAccel widest(p, t);
+  HitPacket a;
+  int32_t blocked_a[RayPacket::kLanes];
+  widest.intersect(rays, a);
+  widest.occluded(rays, filters, blocked_a);
+  for (const int width : {8, 1}) {
+    const EmbreeAccel narrow(p, t, true, width);
+    HitPacket b;
+    int32_t blocked_b[RayPacket::kLanes];
+    narrow.intersect(rays, b);
+    narrow.occluded(rays, filters, blocked_b);
+    for (int i = 0; i < RayPacket::kLanes; ++i) {
+      CHECK(a.prim[i] == b.prim[i]);
+      if (a.prim[i] != RayHit::kNoHit) CHECK(a.t[i] == b.t[i]);
+      CHECK(blocked_a[i] == blocked_b[i]);
+      CHECK(blocked_a[i] == (rays.active[i] != 0 && narrow.occluded(rays.ray(i), filters[i])));
+    }
   }
 }
