@@ -133,40 +133,41 @@ void fill_lanes(const RayPacket& rays, int first, RayK& r) {
   }
 }
 
-void rtc_intersect(const int* valid, RTCScene scene, RTCRayHit16* rh) {
+// Embree's K-wide closest-hit and occlusion queries (K = 16 or 8).
+template <int K, class RayHitK>
+void rtc_intersect(const int* valid, RTCScene scene, RayHitK* rh) {
 #if DUALIGHT_EMBREE4
-  rtcIntersect16(valid, scene, rh);
+  if constexpr (K == 16) {
+    rtcIntersect16(valid, scene, rh);
+  } else {
+    rtcIntersect8(valid, scene, rh);
+  }
 #else
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect16(valid, scene, &ctx, rh);
+  if constexpr (K == 16) {
+    rtcIntersect16(valid, scene, &ctx, rh);
+  } else {
+    rtcIntersect8(valid, scene, &ctx, rh);
+  }
 #endif
 }
-void rtc_intersect(const int* valid, RTCScene scene, RTCRayHit8* rh) {
-#if DUALIGHT_EMBREE4
-  rtcIntersect8(valid, scene, rh);
-#else
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect8(valid, scene, &ctx, rh);
-#endif
-}
-void rtc_occluded(const int* valid, RTCScene scene, RTCRay16* r, FilterContext& fc, bool filtered) {
+template <int K, class RayK>
+void rtc_occluded(const int* valid, RTCScene scene, RayK* r, FilterContext& fc, bool filtered) {
 #if DUALIGHT_EMBREE4
   RTCOccludedArguments args = occluded_arguments(fc, filtered);
-  rtcOccluded16(valid, scene, r, &args);
+  if constexpr (K == 16) {
+    rtcOccluded16(valid, scene, r, &args);
+  } else {
+    rtcOccluded8(valid, scene, r, &args);
+  }
 #else
   init_context(fc, filtered);
-  rtcOccluded16(valid, scene, &fc.context, r);
-#endif
-}
-void rtc_occluded(const int* valid, RTCScene scene, RTCRay8* r, FilterContext& fc, bool filtered) {
-#if DUALIGHT_EMBREE4
-  RTCOccludedArguments args = occluded_arguments(fc, filtered);
-  rtcOccluded8(valid, scene, r, &args);
-#else
-  init_context(fc, filtered);
-  rtcOccluded8(valid, scene, &fc.context, r);
+  if constexpr (K == 16) {
+    rtcOccluded16(valid, scene, &fc.context, r);
+  } else {
+    rtcOccluded8(valid, scene, &fc.context, r);
+  }
 #endif
 }
 
@@ -186,7 +187,7 @@ void intersect_lanes(RTCScene scene, const RayPacket& rays, const int* valid, in
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtc_intersect(valid + first, scene, &rh);
+  rtc_intersect<K>(valid + first, scene, &rh);
   for (int i = 0; i < K; ++i) {
     if (valid[first + i] == 0 || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
     hits.t[first + i] = rh.ray.tfar[i];
@@ -205,7 +206,7 @@ void occluded_lanes(RTCScene scene, const RayPacket& rays, const HitFilter* cons
   fill_lanes<RayK, K>(rays, first, r);
   FilterContext fc{};
   fc.lane_filters = filters;
-  rtc_occluded(valid + first, scene, &r, fc, filters != nullptr);
+  rtc_occluded<K>(valid + first, scene, &r, fc, filters != nullptr);
   for (int i = 0; i < K; ++i) {
     if (valid[first + i] != 0) blocked[first + i] = r.tfar[i] < 0.f ? 1 : 0;
   }

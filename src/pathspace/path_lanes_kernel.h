@@ -24,7 +24,7 @@ struct LanePaths {
 // The vertex each lane's ray found, gathered from the scene's tables (Scene::intersect).
 struct LaneVertex {
   V3 p, n, albedo;
-  vf t;
+  vf t, b1, b2;  // b1, b2: the hit's barycentrics of corners 1 and 2
   vi prim, emitter;  // emitter -1: none
   vi bsdf;           // kLaneLambertian, ...
 };
@@ -162,13 +162,36 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   paths.active &= v.prim != -1;
   const LaneTriangle* tri = ps.triangles.data();
   v.emitter = select(paths.active, gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, emitter)), splat_i(-1));
-  v.t = load(hits.t);
-  v.p = barycentric_point(tri, v.prim, paths.active, load(hits.u), load(hits.v));
+  v.t = load(hits.t), v.b1 = load(hits.u), v.b2 = load(hits.v);
+  v.p = barycentric_point(tri, v.prim, paths.active, v.b1, v.b2);
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
   v.albedo = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, albedo));
   v.bsdf = gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, bsdf));
   return v;
 }
+
+// The BSDFs of the lanes of kind kLaneOther, which the scalar code evaluates lane by lane: the
+// material's, or a textured material's at the hit's surface coordinates (extend_path's `bsdf`).
+struct ScalarBsdfs {
+  const Bsdf* of[kLanes] = {};
+  std::optional<Bsdf> textured[kLanes];
+  vi other{}, delta{};  // the lanes of kind kLaneOther; those whose every lobe is a Dirac delta
+};
+inline void find_scalar_bsdfs(const PathLanesScene& ps, const LaneVertex& v, vi active, ScalarBsdfs& b) {
+  b.other = active & (v.bsdf == kLaneOther);
+  if (!any(b.other)) return;
+  alignas(64) int32_t delta[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (b.other[i] == 0) continue;
+    const auto prim = static_cast<uint32_t>(v.prim[i]);
+    const Material& m = ps.scene->material(prim);
+    b.of[i] = m.textured() ? &b.textured[i].emplace(m.bsdf_at(ps.scene->surface_uv(prim, v.b1[i], v.b2[i]))) : &m.bsdf;
+    delta[i] = is_delta(*b.of[i]) ? -1 : 0;
+  }
+  b.delta = load(delta);
+}
+
+inline Vec3 lane(const V3& v, int i) { return {v.x[i], v.y[i], v.z[i]}; }
 
 // emission_seen: the emitters the lanes hit, weighted against next-event estimation.
 inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LanePaths& paths) {
@@ -207,14 +230,32 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
   return load(seen) != 0;
 }
 
+// eval_f_world and pdf_w_world of the lanes in `lanes` (of kind kLaneOther), by the scalar code,
+// into f and pdf_w.
+inline void evaluate_scalar_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi lanes, const V3& wo, const V3& wi,
+                                  V3& f, vf& pdf_w) {
+  alignas(64) float fx[kLanes], fy[kLanes], fz[kLanes], pdf[kLanes];
+  store(fx, f.x), store(fy, f.y), store(fz, f.z), store(pdf, pdf_w);
+  for (int i = 0; i < kLanes; ++i) {
+    if (lanes[i] == 0) continue;
+    const Vec3 ns = lane(v.n, i), wo_i = lane(wo, i), wi_i = lane(wi, i);
+    const Color fi = eval_f_world(*b.of[i], ns, wo_i, wi_i, TransportMode::Radiance);
+    fx[i] = fi.x, fy[i] = fi.y, fz[i] = fi.z;
+    pdf[i] = pdf_w_world(*b.of[i], ns, wo_i, wi_i, TransportMode::Radiance);
+  }
+  f = {load(fx), load(fy), load(fz)};
+  pdf_w = load(pdf);
+}
+
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
 // MIS-weighted against BSDF sampling, through its shadow ray.
 template <class Sampler>
-void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LaneNumbers<Sampler>& numbers,
-                    LanePaths& paths, TraceCounters& counters) {
+void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
+                    LaneNumbers<Sampler>& numbers, LanePaths& paths, TraceCounters& counters) {
   // No light sample can meet a specular lobe.
-  counters.skipped_connections += count(paths.active & (v.bsdf != kLaneLambertian));
-  const vi active = paths.active & (v.bsdf == kLaneLambertian);
+  const vi delta = (v.bsdf == kLaneMirror) | (v.bsdf == kLaneDielectric) | b.delta;
+  counters.skipped_connections += count(paths.active & delta);
+  const vi active = paths.active & ~delta;
   if (!any(active)) return;
   const vf u_select = numbers.next_1d(active);
   vf u, w;
@@ -238,10 +279,11 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const V3& wo,
   // eval_f_world and pdf_w_world of the Lambertian (its two cosines about the shading normal).
   const vf cos_o = dot(wo, v.n), cos_i = dot(wi, v.n);
   const vi same_side = cos_o * cos_i > 0.f;
-  const V3 f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
+  V3 f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
+  vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
+  if (any(sampled & b.other)) evaluate_scalar_bsdfs(v, b, sampled & b.other, wo, wi, f, pdf_bsdf_w);
   const vi black = is_black(f);
   counters.skipped_connections += count(sampled & black);
-  const vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
   const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
   const vi shadow = sampled & ~black & (weight != 0.f);
   if (!any(shadow)) return;
@@ -297,11 +339,28 @@ inline LaneBsdfSample select(vi m, const LaneBsdfSample& a, const LaneBsdfSample
           select(m, a.ok, b.ok)};
 }
 
+// `sample` of the lanes in `lanes` (of kind kLaneOther) by the scalar code; `delta`: whether
+// each sampled a Dirac lobe.
+inline LaneBsdfSample sample_scalar_bsdfs(const ScalarBsdfs& b, vi lanes, const V3& wo, vf u1, vf u2, vi& delta) {
+  alignas(64) float wi[3][kLanes] = {}, weight[3][kLanes] = {}, pdf[kLanes] = {}, eta[kLanes] = {};
+  alignas(64) int32_t ok[kLanes] = {}, dirac[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (lanes[i] == 0) continue;
+    BsdfSample bs;
+    ok[i] = sample(*b.of[i], lane(wo, i), Point2{u1[i], u2[i]}, TransportMode::Radiance, bs) ? -1 : 0;
+    for (int k = 0; k < 3; ++k) wi[k][i] = bs.wi[k], weight[k][i] = bs.weight[k];
+    pdf[i] = bs.pdf_w, eta[i] = bs.eta, dirac[i] = bs.delta ? -1 : 0;
+  }
+  delta = load(dirac) & load(ok);
+  return {{load(wi[0]), load(wi[1]), load(wi[2])}, {load(weight[0]), load(weight[1]), load(weight[2])}, load(pdf),
+          load(eta), load(ok)};
+}
+
 // The lanes' BSDF samples and Russian roulette (extend_path's `leave`): the next segment's rays;
 // lanes whose path ends there leave `active`.
 template <class Sampler>
-void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame, const V3& wo_local, int depth,
-           LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
+void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const LaneFrame& frame,
+           const V3& wo_local, int depth, LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
   vf u1, u2;
   numbers.next_2d(paths.active, u1, u2);
   const vi mirror = v.bsdf == kLaneMirror, dielectric = v.bsdf == kLaneDielectric;
@@ -310,11 +369,16 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const LaneFrame& frame
     const LaneBsdfSample m{{-wo_local.x, -wo_local.y, wo_local.z}, v.albedo, splat(1.f), splat(1.f), splat_i(-1)};
     s = select(mirror, m, select(dielectric, sample_dielectric(v.albedo.x, wo_local, u1), s));
   }
-  paths.active &= (wo_local.z != 0.f) & s.ok;
+  // The three members refuse wo.z = 0 themselves; the scalar code's members decide their own.
+  s.ok &= wo_local.z != 0.f;
+  vi scalar_delta{};
+  const vi scalar = paths.active & b.other;
+  if (any(scalar)) s = select(scalar, sample_scalar_bsdfs(b, scalar, wo_local, u1, u2, scalar_delta), s);
+  paths.active &= s.ok;
   paths.beta = paths.beta * s.weight;
   paths.roulette_scale = paths.roulette_scale * (s.eta * s.eta * 1.f);  // roulette_scale, unguided
   paths.prev_pdf_w = s.pdf_w;
-  paths.prev_delta = mirror | dielectric;
+  paths.prev_delta = mirror | dielectric | scalar_delta;
   rays.o = offset_ray_origin(v.p, select(s.wi.z > 0.f, v.n, -v.n), ps.scene->offset_scale());
   rays.d = frame.to_world(s.wi);
   rays.tmin = splat(0.f);
@@ -349,10 +413,12 @@ void trace_lanes(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, size
     const V3 wo = -rays.d;
     add_emission(ps, v, wo, paths);
     if (!depth_allows(depth + 1)) break;
+    ScalarBsdfs b;
+    find_scalar_bsdfs(ps, v, paths.active, b);
     const LaneFrame frame = frame_from_normal(v.n);
     const V3 wo_local = frame.to_local(wo);
-    add_next_event(ps, v, wo, numbers, paths, counters);
-    leave(ps, v, frame, wo_local, depth, numbers, paths, rays);
+    add_next_event(ps, v, b, wo, numbers, paths, counters);
+    leave(ps, v, b, frame, wo_local, depth, numbers, paths, rays);
   }
   alignas(64) float L[3][kLanes];
   store(L[0], paths.L.x), store(L[1], paths.L.y), store(L[2], paths.L.z);

@@ -10,8 +10,10 @@
 // hits (the same as its single-ray hits) and the same exact visibility test. So the image is the
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
-// It covers the scenes most research renders use: Lambertian, mirror and smooth dielectric
-// materials without textures, flat triangles, untextured area emitters, no environment, unguided. render_path falls back to the
+// It covers scenes of flat triangles lit by untextured area emitters, without an environment,
+// unguided: Lambertian, mirror and smooth dielectric materials run lane-wide, every other BSDF
+// and textured materials lane by lane through the scalar code (chosen by name only: such scenes
+// are not always faster in lanes). render_path falls back to the
 // scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
 #include <immintrin.h>
@@ -38,14 +40,15 @@ namespace dualight {
 
 // What the kernel gathers per triangle and per emitter, in one place each (a cache line per
 // triangle), copied from the scene with the values the scalar tracer reads.
-// The BSDFs the lanes run, each as the scalar member computes it.
-constexpr int32_t kLaneLambertian = 0, kLaneMirror = 1, kLaneDielectric = 2;
+// The BSDFs the lanes compute lane-wide, each as the scalar member does; kLaneOther: any other
+// member, or a textured material, evaluated lane by lane by the scalar code itself.
+constexpr int32_t kLaneLambertian = 0, kLaneMirror = 1, kLaneDielectric = 2, kLaneOther = 3;
 struct LaneTriangle {
   float p[3][3];      // corners
   float n[3];         // unit geometric normal (= the shading normal: flat triangles only)
   float albedo[3];    // the Lambertian's albedo, the mirror's reflectance, the dielectric's eta (in [0])
   int32_t emitter;    // index into Scene::emitters(), -1: none
-  int32_t bsdf;       // kLaneLambertian, kLaneMirror or kLaneDielectric
+  int32_t bsdf;       // kLaneLambertian, kLaneMirror, kLaneDielectric or kLaneOther
 };
 struct LaneEmitter {
   float p[3][3];  // corners
@@ -84,9 +87,10 @@ PathLanesKernels path_lanes_kernels_sse2();
 PathLanesKernels path_lanes_kernels_avx2();
 PathLanesKernels path_lanes_kernels_avx512();
 
-// The kernels options.lanes names (Auto: AVX-512, else AVX2, where the CPU runs it), or none
-// (Off, a guided render, a scene the lanes do not cover, or Auto on a CPU without AVX2: why_not
-// says which). Throws std::invalid_argument for an instruction set this CPU lacks.
+// The kernels options.lanes names (Auto: AVX-512, else AVX2, where the CPU runs it, for scenes
+// of lane-wide materials only), or none (Off, a guided render, a scene the lanes do not cover,
+// Auto on other materials or on a CPU without AVX2: why_not says which). Throws
+// std::invalid_argument for an instruction set this CPU lacks.
 struct PathLanesChoice {
   std::optional<PathLanesKernels> kernels;
   std::string why_not;
