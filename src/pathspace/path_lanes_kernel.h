@@ -1,8 +1,9 @@
-// The path tracer's bounce for sixteen lanes (path_tracer_lanes.h): extend_path of
-// path_tracer.cpp (unidirectional path tracing with next-event estimation and MIS [Veach 1997,
-// ch. 9]) for Lambertian surfaces and area emitters, lane-wide. Each step names the scalar
-// function it mirrors; the order of operations is that function's, so the bits are too.
-// Deliberately without include guard or includes: see core/lanes.h.
+// The path tracer's bounces for a chunk of lanes (path_tracer_lanes.h; kLanes of core/lanes.h):
+// extend_path of path_tracer.cpp (unidirectional path tracing with next-event estimation and MIS
+// [Veach 1997, ch. 9]) lane-wide for area emitters and Lambertian, mirror and smooth dielectric
+// surfaces [pbrt-v4 sec. 9.5], and lane by lane through the scalar code for every other BSDF.
+// Each step names the scalar function it mirrors; the order of operations is that function's, so
+// the bits are too. Deliberately without include guard or includes: see core/lanes.h.
 
 namespace dualight::DUALIGHT_LANES_NS {
 
