@@ -39,12 +39,14 @@ void check_device(RTCDevice device, const char* what) {
 // and direction within +-1.844e18 (FLT_LARGE), and a tfar that is not NaN. Rays outside that
 // (from scenes at extreme scales, or NaN that slipped through) are treated as missing
 // everything and as occluded, which adds no light, instead of aborting the process.
-bool embree_accepts(const Ray& ray) {
+// Without branches, so a loop over a packet's lanes vectorizes; a NaN tmax fails tmax >= 0.
+inline bool embree_accepts(float ox, float oy, float oz, float dx, float dy, float dz, float tmax) {
   constexpr float kLarge = 1.844e18f;
-  for (int i = 0; i < 3; ++i) {
-    if (!(std::fabs(ray.o[i]) <= kLarge) || !(std::fabs(ray.d[i]) <= kLarge)) return false;
-  }
-  return !std::isnan(ray.tmax) && ray.tmax >= 0.f;
+  return (std::fabs(ox) <= kLarge) & (std::fabs(oy) <= kLarge) & (std::fabs(oz) <= kLarge) &
+         (std::fabs(dx) <= kLarge) & (std::fabs(dy) <= kLarge) & (std::fabs(dz) <= kLarge) & (tmax >= 0.f);
+}
+bool embree_accepts(const Ray& ray) {
+  return embree_accepts(ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, ray.tmax);
 }
 
 void fill_ray(const Ray& ray, RTCRay& r) {
@@ -215,13 +217,10 @@ void occluded_lanes(RTCScene scene, const RayPacket& rays, const HitFilter* cons
 // Embree's lane masks (-1: trace) for the active lanes whose rays it accepts (embree_accepts);
 // false when none.
 bool packet_valid(const RayPacket& rays, int* valid) {
-  constexpr float kLarge = 1.844e18f;
   int any = 0;
   for (int i = 0; i < RayPacket::kLanes; ++i) {
-    // Without branches, so the loop vectorizes; a NaN tmax fails tmax >= 0.
-    const int ok = (std::fabs(rays.ox[i]) <= kLarge) & (std::fabs(rays.oy[i]) <= kLarge) &
-                   (std::fabs(rays.oz[i]) <= kLarge) & (std::fabs(rays.dx[i]) <= kLarge) &
-                   (std::fabs(rays.dy[i]) <= kLarge) & (std::fabs(rays.dz[i]) <= kLarge) & (rays.tmax[i] >= 0.f) &
+    const int ok = embree_accepts(rays.ox[i], rays.oy[i], rays.oz[i], rays.dx[i], rays.dy[i], rays.dz[i],
+                                  rays.tmax[i]) &
                    (rays.active[i] != 0);
     valid[i] = -ok;
     any |= ok;

@@ -187,13 +187,14 @@ void Scene::intersect(const RayPacket& rays, HitPacket& hits) const {
   accel_->intersect(rays, hits);
   for (int i = 0; i < RayPacket::kLanes; ++i) {
     if (hits.prim[i] == RayHit::kNoHit || hits.t[i] != 0.f) continue;
-    const RayHit rh = closest_hit(rays.ray(i));  // rare: as intersect() below, past a coplanar wall
+    RayHit rh;
+    rh.t = hits.t[i], rh.u = hits.u[i], rh.v = hits.v[i], rh.prim = hits.prim[i];
+    rh = past_start_plane(rays.ray(i), rh);  // rare: as intersect() below
     hits.t[i] = rh.t, hits.u[i] = rh.u, hits.v[i] = rh.v, hits.prim[i] = rh.prim;
   }
 }
 
-RayHit Scene::closest_hit(const Ray& ray) const {
-  RayHit rh = accel_->intersect(ray);
+RayHit Scene::past_start_plane(const Ray& ray, RayHit rh) const {
   if (rh.hit() && rh.t == 0.f && plane_offset(rh.prim, ray.o) == 0.f) {
     // A ray leaving the edge where two walls meet starts in the other wall's plane, offset
     // along its own normal only: Embree reports that wall at t = 0, a point the ray does not
@@ -208,7 +209,7 @@ RayHit Scene::closest_hit(const Ray& ray) const {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  const RayHit rh = closest_hit(ray);
+  const RayHit rh = past_start_plane(ray, accel_->intersect(ray));
   if (!rh.hit()) return false;
   const uint32_t prim = rh.prim;
   hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;

@@ -174,8 +174,9 @@ class Scene {
   float offset_scale() const { return offset_scale_; }
 
  private:
-  // Embree's closest hit, past a wall the ray starts in the plane of (intersect()).
-  RayHit closest_hit(const Ray& ray) const;
+  // Embree's closest hit rh of `ray`, or, where rh is a wall the ray starts in the plane of, the
+  // first hit past it (intersect()).
+  RayHit past_start_plane(const Ray& ray, RayHit rh) const;
   std::pair<Vec3, float> normal_and_double_area(uint32_t prim) const;
   AreaEmitter area_emitter(uint32_t prim) const;
   void set_vertex_normals(const std::vector<float>& normals);

@@ -18,13 +18,13 @@
 
 namespace dualight {
 
-// With `guiding`, camera paths sample directions from a radiance guide trained first (an SD-tree,
-// guiding/sd_tree.h) mixed with BSDF sampling [Müller, Gross, Novák 2017].
 // Which build of the path tracer in lanes (path_tracer_lanes.h) renders: AVX-512 or else AVX2
 // where the CPU runs it (Auto), a given one (for tests and benchmarks), or none (Off: one path
 // at a time).
 enum class LaneIsa { Auto, Off, Sse2, Avx2, Avx512 };
 
+// With `guiding`, camera paths sample directions from a radiance guide trained first (an SD-tree,
+// guiding/sd_tree.h) mixed with BSDF sampling [Müller, Gross, Novák 2017].
 struct PathTracerOptions : EstimatorOptions, GuidingOptions {
   Strategies strategies = Strategies::Mis;  // or BSDF sampling or light sampling alone
   LaneIsa lanes = LaneIsa::Auto;  // where the scene allows (path_tracer_lanes.h); same image either way

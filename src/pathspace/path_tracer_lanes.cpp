@@ -6,6 +6,30 @@ namespace dualight {
 
 namespace {
 
+// How the lanes compute material m's BSDF (kLaneLambertian, ...), and, for those they compute
+// lane-wide, its parameters in `albedo` (may be null): the albedo, the mirror's reflectance, or
+// the dielectric's eta in albedo[0]. Textured materials go lane by lane (their BSDF at each uv).
+int32_t lane_bsdf(const Material& m, float* albedo) {
+  const auto copy = [albedo](const Vec3& v) {
+    if (albedo != nullptr) albedo[0] = v.x, albedo[1] = v.y, albedo[2] = v.z;
+  };
+  copy(Vec3(0.f));
+  if (m.textured()) return kLaneOther;
+  if (const auto* l = std::get_if<Lambertian>(&m.bsdf)) {
+    copy(l->albedo);
+    return kLaneLambertian;
+  }
+  if (const auto* r = std::get_if<Mirror>(&m.bsdf)) {
+    copy(r->reflectance);
+    return kLaneMirror;
+  }
+  if (const auto* d = std::get_if<Dielectric>(&m.bsdf)) {
+    copy(Vec3(d->eta, 0.f, 0.f));
+    return kLaneDielectric;
+  }
+  return kLaneOther;
+}
+
 // What the scene has that the lanes do not cover ("" when nothing).
 std::string lanes_lack(const Scene& scene) {
   if (scene.environment() != nullptr) return "an environment emitter";
@@ -28,10 +52,7 @@ std::string lanes_lack(const Scene& scene) {
 // door 1.11-1.15 against 0.86-0.93): auto leaves them to the scalar tracer.
 bool lane_wide_materials(const Scene& scene) {
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
-    const Material& m = scene.material(prim);
-    const bool lane_wide = std::holds_alternative<Lambertian>(m.bsdf) || std::holds_alternative<Mirror>(m.bsdf) ||
-                           std::holds_alternative<Dielectric>(m.bsdf);
-    if (m.textured() || !lane_wide) return false;
+    if (lane_bsdf(scene.material(prim), nullptr) == kLaneOther) return false;
   }
   return true;
 }
@@ -95,18 +116,7 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     LaneTriangle& t = ps.triangles[prim];
     for (int c = 0; c < 3; ++c) copy(scene.vertex(prim, c), t.p[c]);
     copy(scene.normal(prim), t.n);
-    const Material& material = scene.material(prim);
-    const Bsdf& b = material.bsdf;
-    copy(Vec3(0.f), t.albedo), t.bsdf = kLaneOther;
-    if (material.textured()) {
-      // kLaneOther: its BSDF at each hit's uv
-    } else if (const auto* l = std::get_if<Lambertian>(&b)) {
-      copy(l->albedo, t.albedo), t.bsdf = kLaneLambertian;
-    } else if (const auto* m = std::get_if<Mirror>(&b)) {
-      copy(m->reflectance, t.albedo), t.bsdf = kLaneMirror;
-    } else if (const auto* d = std::get_if<Dielectric>(&b)) {
-      copy(Vec3(d->eta, 0.f, 0.f), t.albedo), t.bsdf = kLaneDielectric;
-    }
+    t.bsdf = lane_bsdf(scene.material(prim), t.albedo);
     const Emitter* e = scene.emitter_at(prim);
     t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
   }

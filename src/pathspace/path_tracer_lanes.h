@@ -34,6 +34,7 @@
 #include "geometry/camera.h"
 #include "geometry/scene.h"
 #include "pathspace/path_tracer.h"
+#include "pathspace/pixel_driver.h"
 #include "pathspace/render_stats.h"
 
 namespace dualight {
@@ -66,11 +67,12 @@ struct PathLanesScene {
   std::vector<LaneEmitter> emitters;
 };
 
-constexpr int kPathLanes = RayPacket::kLanes;
+// The samplers of a row's lanes: the pixel driver's (a tile's row is one packet of rays).
 template <class Sampler>
-using LaneSamplers = std::array<std::optional<Sampler>, kPathLanes>;
+using LaneSamplers = RowSamplers<Sampler>;
+static_assert(pixel_driver_detail::kTile == RayPacket::kLanes);
 
-// Traces lanes [0, n) (n <= kPathLanes): lane i starts at film position (x[i], y[i]) with
+// Traces lanes [0, n) (n <= RayPacket::kLanes): lane i starts at film position (x[i], y[i]) with
 // *samplers[i] (its first 2D sample already spent on that position) and writes its radiance
 // estimate to out[i].
 template <class Sampler>

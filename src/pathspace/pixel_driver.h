@@ -77,6 +77,16 @@ struct TileRect {
   int x0, y0, x1, y1;
 };
 
+// Adds sample s's value to `pixel` (zero, counted invalid, where not finite).
+inline void add_sample(Film& film, size_t pixel, uint32_t s, Color value, uint64_t& invalid) {
+  if (!is_finite(value)) {
+    value = Color(0.f);
+    ++invalid;
+  }
+  film.add_sample(pixel, value);
+  if (block_ends_at(s)) film.end_block(pixel);
+}
+
 // Sample index s of the pixels [x0, x1) of row y, one estimate call each; returns how many.
 template <class Sampler, class Estimate>
 uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
@@ -86,14 +96,10 @@ uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, i
     Sampler sampler(opt.seed, pixel, s);
     const Point2 jitter = sampler.next_2d();
     splats.begin_path();
-    Color value = estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
+    const Color value =
+        estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
     splats.end_path();
-    if (!is_finite(value)) {
-      value = Color(0.f);
-      ++invalid;
-    }
-    film.add_sample(pixel, value);
-    if (block_ends_at(s)) film.end_block(pixel);
+    add_sample(film, pixel, s, value, invalid);
   }
   return static_cast<uint32_t>(x1 - x0);
 }
@@ -113,15 +119,7 @@ uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, i
   }
   Color value[kTile];
   estimate.f(px, py, samplers, n, local, value);
-  for (int i = 0; i < n; ++i) {
-    const size_t pixel = static_cast<size_t>(y) * film.width() + x0 + i;
-    if (!is_finite(value[i])) {
-      value[i] = Color(0.f);
-      ++invalid;
-    }
-    film.add_sample(pixel, value[i]);
-    if (block_ends_at(s)) film.end_block(pixel);
-  }
+  for (int i = 0; i < n; ++i) add_sample(film, static_cast<size_t>(y) * film.width() + x0 + i, s, value[i], invalid);
   return static_cast<uint32_t>(n);
 }
 
