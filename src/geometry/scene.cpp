@@ -8,6 +8,8 @@
 #include <tuple>
 #include <utility>
 
+#include "geometry/surface_clearance.h"
+
 namespace dualight {
 
 // The unit normal and twice the area of a triangle whose cross product's squared length leaves
@@ -131,6 +133,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   features_ = compute_scene_features(positions_, triangles_, normal_, used, emitter_triangles);
   robust_intersections_ = robust_intersections;
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_, robust_intersections);
+  clearance_ = emitter_clearances(*this);
 }
 
 void Scene::set_vertex_normals(const std::vector<float>& normals) {
@@ -280,6 +283,18 @@ struct VisibilityQuery {
     return 1e-5f * std::max(1.f, max_component(vmax(vmax(target_point, -target_point), vmax(origin, -origin))));
   }
 
+  // Where the ray may stop when traced without the filter: short of the target by half the
+  // target's clearance (surface_clearance.h), so the rest of the segment meets no surface but
+  // the target's own and those coplanar with it, which the filter ignores. Then "nothing up to
+  // there" is the filtered answer, without Embree's callback at the target's hit (which cost
+  // the path tracer 8-10 % on the Cornell and caustic boxes). 0 where there is no such stop: a
+  // target touching another surface, or a segment too long for half the clearance to stand
+  // clear of t's rounding (1e-5 of it).
+  float unfiltered_tmax(float target_clearance) const {
+    const float margin = 0.5f * target_clearance / length(direction);
+    return margin >= 1e-5f ? 1.f - std::min(margin, 0.5f) : 0.f;
+  }
+
   static bool ignore(const void* user, uint32_t prim, float t) {
     const auto* q = static_cast<const VisibilityQuery*>(user);
     if (prim == q->target || q->segment_stays_on_one_side(prim)) return true;
@@ -295,29 +310,52 @@ struct VisibilityQuery {
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
   const VisibilityQuery query(*this, shadow_origin(p0, n0, p1), p1, target, origin);
+  const float tmax = query.unfiltered_tmax(clearance_[target]);
+  if (tmax > 0.f && !accel_->occluded(Ray{query.origin, query.direction, tmax})) return true;
+  // Blocked short of the target, or no short stop: the filter decides (a blocker may be a
+  // surface the segment only touches at its ends).
   const HitFilter filter{&VisibilityQuery::ignore, &query};
   return !accel_->occluded(query.ray(), &filter);
 }
 
 void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   constexpr int kLanes = RayPacket::kLanes;
-  RayPacket rays;
   // Built in place, lane by lane: the filter reads them during the query.
   alignas(VisibilityQuery) unsigned char storage[kLanes][sizeof(VisibilityQuery)];
-  HitFilter filter[kLanes];
-  const HitFilter* filters[kLanes] = {};
+  const VisibilityQuery* query[kLanes] = {};
+  RayPacket short_rays;  // as visible() above: first without the filter, where a short stop exists
+  bool any_short = false;
   for (int i = 0; i < kLanes; ++i) {
-    rays.active[i] = q.active[i];
+    short_rays.active[i] = 0;
     if (q.active[i] == 0) continue;
-    const auto* query = new (storage[i])
+    query[i] = new (storage[i])
         VisibilityQuery(*this, {q.o0x[i], q.o0y[i], q.o0z[i]}, {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
-    rays.set(i, query->ray());
-    filter[i] = HitFilter{&VisibilityQuery::ignore, query};
-    filters[i] = &filter[i];
+    const float tmax = query[i]->unfiltered_tmax(clearance_[q.target[i]]);
+    if (!(tmax > 0.f)) continue;
+    short_rays.set(i, Ray{query[i]->origin, query[i]->direction, tmax});
+    short_rays.active[i] = 1;
+    any_short = true;
   }
   int32_t blocked[kLanes];
+  if (any_short) accel_->occluded(short_rays, nullptr, blocked);
+  RayPacket rays;
+  HitFilter filter[kLanes];
+  const HitFilter* filters[kLanes] = {};
+  bool any_filtered = false;
+  for (int i = 0; i < kLanes; ++i) {
+    visible[i] = short_rays.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
+    rays.active[i] = q.active[i] != 0 && visible[i] == 0 ? 1 : 0;
+    if (rays.active[i] == 0) continue;
+    rays.set(i, query[i]->ray());
+    filter[i] = HitFilter{&VisibilityQuery::ignore, query[i]};
+    filters[i] = &filter[i];
+    any_filtered = true;
+  }
+  if (!any_filtered) return;
   accel_->occluded(rays, filters, blocked);
-  for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
+  for (int i = 0; i < kLanes; ++i) {
+    if (rays.active[i] != 0) visible[i] = blocked[i] == 0 ? 1 : 0;
+  }
 }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {

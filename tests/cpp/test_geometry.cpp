@@ -1,5 +1,7 @@
 // Ray-triangle conventions of the Embree wrapper and the scene, and the ray offset.
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "box_scene.h"
@@ -8,6 +10,7 @@
 #include "core/sampler.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "geometry/surface_clearance.h"
 
 using namespace dualight;
 
@@ -274,5 +277,110 @@ TEST_CASE("ray_packets_of_every_width_find_the_same") {
       CHECK(blocked_a[i] == blocked_b[i]);
       CHECK(blocked_a[i] == (rays.active[i] != 0 && narrow.occluded(rays.ray(i), filters[i])));
     }
+  }
+}
+
+namespace {
+// The unit box seen from inside, a light quad (prims 12, 13) at y = 0.95 facing down, a small
+// horizontal occluder (prim 14) 0.02 below the light's middle, a tilted triangle (prim 15) by the
+// light's edge, and a thin wall (prims 16, 17) standing on the floor. `lit`: the quad emits;
+// `robust`: Embree's robust mode.
+Scene lit_box(bool lit, bool robust = true) {
+  std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                             3, 2, 6, 3, 6, 7, 0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+  const auto add = [&](std::initializer_list<float> xyz, std::initializer_list<uint32_t> corners) {
+    const uint32_t base = static_cast<uint32_t>(p.size() / 3);
+    p.insert(p.end(), xyz);
+    for (const uint32_t c : corners) t.push_back(base + c);
+  };
+  add({0.3f, 0.95f, 0.3f, 0.7f, 0.95f, 0.3f, 0.7f, 0.95f, 0.7f, 0.3f, 0.95f, 0.7f}, {0, 1, 2, 0, 2, 3});
+  add({0.35f, 0.93f, 0.35f, 0.65f, 0.93f, 0.35f, 0.5f, 0.93f, 0.65f}, {0, 1, 2});
+  add({0.75f, 0.9f, 0.3f, 0.85f, 0.97f, 0.5f, 0.75f, 0.9f, 0.7f}, {0, 1, 2});
+  add({0.6f, 0.f, 0.1f, 0.6f, 0.f, 0.9f, 0.6f, 0.6f, 0.9f, 0.6f, 0.6f, 0.1f}, {0, 1, 2, 0, 2, 3});
+  std::vector<uint32_t> m(t.size() / 3, 0);
+  m[12] = m[13] = 1;
+  return Scene(std::move(p), std::move(t), std::move(m),
+               {Material{Lambertian{Color(0.5f)}, Color(0.f)},
+                Material{Lambertian{Color(0.2f)}, Color(lit ? 5.f : 0.f)}},
+               {}, {}, {}, robust);
+}
+}  // namespace
+
+TEST_CASE("emitter_clearance_is_a_lower_bound_on_the_distance_to_other_surfaces") {
+  const Scene scene = lit_box(true);
+  const std::vector<float> c = emitter_clearances(scene);
+  // The occluder 0.02 below is the nearest; the quad's other half (coplanar) does not count.
+  CHECK_NEAR(c[12], 0.02f, 1e-6f);
+  CHECK_NEAR(c[13], 0.02f, 1e-6f);
+  CHECK(c[12] <= 0.02f);
+  for (uint32_t prim = 0; prim < c.size(); ++prim) {
+    if (prim != 12 && prim != 13) CHECK(c[prim] == 0.f);  // not emitters
+  }
+  // Against sampled points: no point of another surface closer to the light than its clearance.
+  IndependentSampler sampler(5, 0, 0);
+  const auto point_on = [&](uint32_t prim) {
+    const float u = sampler.next_1d(), v = sampler.next_1d(), su = std::sqrt(u);
+    return scene.vertex(prim, 0) * (1.f - su) + scene.vertex(prim, 1) * (su * (1.f - v)) +
+           scene.vertex(prim, 2) * (su * v);
+  };
+  float nearest = 1e30f;
+  for (int i = 0; i < 20000; ++i) {
+    const uint32_t other = 14 + static_cast<uint32_t>(sampler.next_1d() * 4.f) % 4;
+    nearest = std::min(nearest, length(point_on(12 + i % 2) - point_on(other)));
+  }
+  CHECK(nearest >= c[12]);
+  // Controls: a light touching a wall, or too many pairs to bound, gets 0.
+  CHECK(emitter_clearances(scene, 1)[12] == 0.f);
+  const Scene touching({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 1, 2, 3, 4, 5}, {1, 0},
+                       {Material{Lambertian{Color(0.5f)}, Color(0.f)}, Material{Lambertian{Color(0.2f)}, Color(5.f)}});
+  CHECK(emitter_clearances(touching)[0] == 0.f);
+}
+
+TEST_CASE("visibility_short_of_a_clear_target_equals_the_filtered_answer") {
+  // The same geometry twice: with the light emitting, shadow rays to it stop short by half its
+  // clearance without the filter (surface_clearance.h); without, they are filtered to t = 1.
+  // Every answer must agree, from random points of every surface to random points of the
+  // light, singly and in packets. The occluder 0.02 under the light sets the clearance: a stop
+  // any nearer the light would miss it (as a stop at 1 - clearance / length would, by rounding).
+  // In Embree's fast mode too (bench_peers' "fast"), whose misses must not differ either.
+  for (const bool robust : {true, false}) {
+    CAPTURE(robust);
+    const Scene lit = lit_box(true, robust), unlit = lit_box(false, robust);
+    IndependentSampler sampler(9, 0, 0);
+    int visible = 0, hidden = 0, differ = 0;
+    for (int round = 0; round < 600; ++round) {
+      Scene::ShadowPacket q;
+      Vec3 p0s[RayPacket::kLanes], n0s[RayPacket::kLanes], p1s[RayPacket::kLanes];
+      for (int i = 0; i < RayPacket::kLanes; ++i) {
+        const uint32_t origin = static_cast<uint32_t>(sampler.next_1d() * 18.f) % 18;
+        const uint32_t target = 12 + (i & 1);
+        const float a = sampler.next_1d(), b = sampler.next_1d() * (1.f - a);
+        p0s[i] = lit.vertex(origin, 0) * (1.f - a - b) + lit.vertex(origin, 1) * a + lit.vertex(origin, 2) * b;
+        n0s[i] = lit.normal(origin);
+        const float u = sampler.next_1d(), v = sampler.next_1d() * (1.f - u);
+        p1s[i] = lit.vertex(target, 0) * (1.f - u - v) + lit.vertex(target, 1) * u + lit.vertex(target, 2) * v;
+        const Vec3 o0 = lit.shadow_origin(p0s[i], n0s[i], p1s[i]);
+        q.o0x[i] = o0.x, q.o0y[i] = o0.y, q.o0z[i] = o0.z;
+        q.p1x[i] = p1s[i].x, q.p1y[i] = p1s[i].y, q.p1z[i] = p1s[i].z;
+        q.target[i] = target, q.origin[i] = origin, q.active[i] = i % 7 == 6 ? 0 : 1;
+      }
+      int32_t seen[RayPacket::kLanes];
+      lit.visible(q, seen);
+      for (int i = 0; i < RayPacket::kLanes; ++i) {
+        if (q.active[i] == 0) {
+          CHECK(seen[i] == 0);
+          continue;
+        }
+        const bool short_stop = lit.visible(p0s[i], n0s[i], p1s[i], q.target[i], q.origin[i]);
+        const bool filtered = unlit.visible(p0s[i], n0s[i], p1s[i], q.target[i], q.origin[i]);
+        differ += short_stop != filtered || short_stop != (seen[i] != 0) ? 1 : 0;
+        visible += filtered ? 1 : 0;
+        hidden += filtered ? 0 : 1;
+      }
+    }
+    CHECK(differ == 0);
+    CHECK(visible > 1000);
+    CHECK(hidden > 1000);
   }
 }
