@@ -338,10 +338,11 @@ def render(
         ``"path"`` only: ``"auto"`` (the default) runs the paths of a tile's row (sixteen
         pixels) together, their rays traced as Embree packets and their shading in SIMD lanes,
         on AVX-512 or else AVX2 where the CPU has it and the scene allows it: flat triangles
-        lit by area emitters without textures, no environment, unguided, and only diffuse,
-        mirror and smooth glass materials without textures, which run lane-wide. Asked for by
-        name, the lanes also take every other material, lane by lane through the scalar code
-        (faster or slower by the scene). ``"off"`` runs one path at a time; ``"sse2"``,
+        lit by area emitters without textures, no environment, unguided. Diffuse, mirror and
+        smooth glass materials without textures run lane-wide; the others go lane by lane
+        through the scalar code, which ``"auto"`` does where they cover at most 10 % of the
+        scene's area (more ran slower than one path at a time). Asked for by name, the lanes
+        take them on any share. ``"off"`` runs one path at a time; ``"sse2"``,
         ``"avx2"`` and ``"avx512"`` ask for one build (a ``ValueError`` where the CPU lacks
         it; the SSE2 build runs slower than one path at a time and serves checks). The image
         is the same, bit for bit, whichever runs: only the speed differs.

@@ -1,6 +1,8 @@
 #include "pathspace/path_tracer_lanes.h"
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace dualight {
 
@@ -45,17 +47,26 @@ std::string lanes_lack(const Scene& scene) {
   return "";
 }
 
-// Whether every material is one the lanes compute lane-wide (untextured Lambertian, mirror or
-// smooth dielectric). The others go lane by lane through the scalar code, and scenes with large
-// such surfaces ran slower than one path at a time (one thread, 64x64, M samples/s: glossy Cornell
-// box 0.67 in AVX-512 lanes against 0.68-0.69, coated 0.77-0.84 against 0.83-0.85; the glossy
-// door 1.11-1.15 against 0.86-0.93): auto leaves them to the scalar tracer.
-bool lane_wide_materials(const Scene& scene) {
+// The share of the scene's surface area whose material the lanes do not compute lane-wide
+// (kLaneOther: textured, or other than untextured Lambertian, mirror or smooth dielectric).
+// Those go lane by lane through the scalar code. Where they cover much of the scene the lanes
+// ran slower than one path at a time, where little, faster (one thread, 64x64, M samples/s,
+// AVX-512 lanes against one path at a time): glossy Cornell box (30 % of its area) 0.67 against
+// 0.68-0.69, coated (30 %) 0.77-0.84 against 0.83-0.85, textured (44 %) 1.06-1.07 against
+// 1.04-1.06; the glossy door (3 %) 1.11-1.15 against 0.86-0.93.
+double lane_by_lane_area_share(const Scene& scene) {
+  double other = 0.0, total = 0.0;
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
-    if (lane_bsdf(scene.material(prim), nullptr) == kLaneOther) return false;
+    const double a = scene.area(prim);
+    total += a;
+    if (lane_bsdf(scene.material(prim), nullptr) == kLaneOther) other += a;
   }
-  return true;
+  return total > 0.0 ? other / total : 0.0;
 }
+
+// auto runs the lanes up to this share of lane-by-lane area (lane_by_lane_area_share's data: a
+// few percent gained 25 %, 30 % lost 2-5 %).
+constexpr double kMaxLaneByLaneShare = 0.1;
 
 bool cpu_runs(LaneIsa isa) {
   switch (isa) {
@@ -92,9 +103,12 @@ PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& o
   std::string lack = lanes_lack(scene);
   if (!lack.empty()) return {std::nullopt, "the scene has " + lack};
   if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
-  if (!lane_wide_materials(scene)) {
-    return {std::nullopt, "the scene has materials other than untextured diffuse, mirror or smooth glass "
-                          "(lanes='avx512' or 'avx2' runs them lane by lane, not always faster)"};
+  const double share = lane_by_lane_area_share(scene);
+  if (share > kMaxLaneByLaneShare) {
+    return {std::nullopt, "the scene has materials other than untextured diffuse, mirror or smooth glass on " +
+                              std::to_string(static_cast<int>(std::round(100.0 * share))) +
+                              " % of its area (over 10 %; lanes='avx512' or 'avx2' runs them lane by lane, "
+                              "not always faster)"};
   }
   // AVX-512, else AVX2 (with Embree's 8-wide packets there). The SSE2 build, whose rays go to
   // Embree one at a time on CPUs without AVX, ran slower than one path at a time on the Cornell
