@@ -1,9 +1,9 @@
 // Lower bounds on the distance between triangles, from separating axes: the gap between two
-// triangles' extents along any unit axis is at most their distance (the separating axis
-// theorem's measure [Gottschalk, Lin and Manocha 1996, OBBTree, sec. 4]). The axes tried are
-// the coordinate axes (the bounding boxes' distance) and the two triangles' normals, which
-// give the exact distance between parallel or box-separated faces, the common case of a light
-// below a ceiling. Computed in double; the float result is rounded down.
+// triangles' extents along any unit axis is at most their distance (the measure behind the
+// separating axis test of Gottschalk, Lin and Manocha's OBBTree, SIGGRAPH 1996). The axes
+// tried are the coordinate axes (the bounding boxes' distance) and the two triangles' normals,
+// which give the exact distance between parallel or box-separated faces, the common case of a
+// light below a ceiling. Computed in double; the float result is rounded down.
 #include "geometry/surface_clearance.h"
 
 #include <algorithm>

@@ -65,7 +65,7 @@ double lane_by_lane_area_share(const Scene& scene) {
 }
 
 // auto runs the lanes up to this share of lane-by-lane area (lane_by_lane_area_share's data: a
-// few percent gained 25 %, 30 % lost 2-5 %).
+// few percent gained 25-45 %, 30 % lost 2-5 %).
 constexpr double kMaxLaneByLaneShare = 0.1;
 
 bool cpu_runs(LaneIsa isa) {
@@ -105,10 +105,10 @@ PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& o
   if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
   const double share = lane_by_lane_area_share(scene);
   if (share > kMaxLaneByLaneShare) {
+    const auto percent = [](double x) { return std::to_string(static_cast<int>(std::round(100.0 * x))) + " %"; };
     return {std::nullopt, "the scene has materials other than untextured diffuse, mirror or smooth glass on " +
-                              std::to_string(static_cast<int>(std::round(100.0 * share))) +
-                              " % of its area (over 10 %; lanes='avx512' or 'avx2' runs them lane by lane, "
-                              "not always faster)"};
+                              percent(share) + " of its area (over " + percent(kMaxLaneByLaneShare) +
+                              "; lanes='avx512' or 'avx2' runs them lane by lane, not always faster)"};
   }
   // AVX-512, else AVX2 (with Embree's 8-wide packets there). The SSE2 build, whose rays go to
   // Embree one at a time on CPUs without AVX, ran slower than one path at a time on the Cornell
