@@ -337,8 +337,9 @@ def render(
     lanes:
         ``"path"`` only: ``"auto"`` (the default) runs the paths of a tile's row (sixteen
         pixels) together, their rays traced as Embree packets and their shading in SIMD lanes,
-        on AVX-512 or else AVX2 where the CPU has it and the scene allows it: flat triangles
-        lit by area emitters without textures, no environment, unguided. Diffuse, mirror and
+        on AVX-512 or else AVX2 where the CPU has it and the scene allows it: triangles
+        (flat or with vertex normals) lit by area emitters without textures, no environment,
+        unguided. Diffuse, mirror and
         smooth glass materials without textures run lane-wide; the others go lane by lane
         through the scalar code, which ``"auto"`` does where they cover at most 10 % of the
         scene's area (more ran slower than one path at a time). Asked for by name, the lanes

@@ -24,7 +24,7 @@ struct LanePaths {
 
 // The vertex each lane's ray found, gathered from the scene's tables (Scene::intersect).
 struct LaneVertex {
-  V3 p, n, albedo;
+  V3 p, n, ns, albedo;  // n: geometric normal, ns: shading normal (SurfaceHit's)
   vf t, b1, b2;  // b1, b2: the hit's barycentrics of corners 1 and 2
   vi prim, emitter;  // emitter -1: none
   vi bsdf;           // kLaneLambertian, ...
@@ -148,6 +148,20 @@ inline V3 offset_ray_origin(const V3& p, const V3& n, float scene_scale) {
           offset_component(p.z, n.z, scene_scale)};
 }
 
+// The shading normals of a vertex's lanes: on the `smooth` lanes the scene's interpolated
+// vertex normals (Scene::shading_normal, lane by lane), elsewhere v.n.
+inline V3 shading_normals(const PathLanesScene& ps, const LaneVertex& v, vi smooth) {
+  if (!any(smooth)) return v.n;
+  alignas(64) float ns[3][kLanes];
+  store(ns[0], v.n.x), store(ns[1], v.n.y), store(ns[2], v.n.z);
+  for (int i = 0; i < kLanes; ++i) {
+    if (smooth[i] == 0) continue;
+    const Vec3 n = ps.scene->shading_normal(static_cast<uint32_t>(v.prim[i]), v.b1[i], v.b2[i]);
+    ns[0][i] = n.x, ns[1][i] = n.y, ns[2][i] = n.z;
+  }
+  return {load(ns[0]), load(ns[1]), load(ns[2])};
+}
+
 // Scene::intersect for the active lanes: those that find nothing end (no environment).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
   RayPacket packet;
@@ -166,6 +180,8 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   v.t = load(hits.t), v.b1 = load(hits.u), v.b2 = load(hits.v);
   v.p = barycentric_point(tri, v.prim, paths.active, v.b1, v.b2);
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
+  v.ns = v.n;
+  if (ps.smooth) v.ns = shading_normals(ps, v, paths.active & gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, smooth)));
   v.albedo = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, albedo));
   v.bsdf = gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, bsdf));
   return v;
@@ -239,7 +255,7 @@ inline void evaluate_scalar_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi 
   store(fx, f.x), store(fy, f.y), store(fz, f.z), store(pdf, pdf_w);
   for (int i = 0; i < kLanes; ++i) {
     if (lanes[i] == 0) continue;
-    const Vec3 ns = lane(v.n, i), wo_i = lane(wo, i), wi_i = lane(wi, i);
+    const Vec3 ns = lane(v.ns, i), wo_i = lane(wo, i), wi_i = lane(wi, i);
     const Color fi = eval_f_world(*b.of[i], ns, wo_i, wi_i, TransportMode::Radiance);
     fx[i] = fi.x, fy[i] = fi.y, fz[i] = fi.z;
     pdf[i] = pdf_w_world(*b.of[i], ns, wo_i, wi_i, TransportMode::Radiance);
@@ -278,7 +294,7 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const vi sampled = active & (cos_light > 0.f) & (dist2 > 0.f);
   const vf pdf_w = pdf_a * dist2 / cos_light;
   // eval_f_world and pdf_w_world of the Lambertian (its two cosines about the shading normal).
-  const vf cos_o = dot(wo, v.n), cos_i = dot(wi, v.n);
+  const vf cos_o = dot(wo, v.ns), cos_i = dot(wi, v.ns);
   const vi same_side = cos_o * cos_i > 0.f;
   V3 f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
   vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
@@ -380,8 +396,11 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, 
   paths.roulette_scale = paths.roulette_scale * (s.eta * s.eta * 1.f);  // roulette_scale, unguided
   paths.prev_pdf_w = s.pdf_w;
   paths.prev_delta = mirror | dielectric | scalar_delta;
-  rays.o = offset_ray_origin(v.p, select(s.wi.z > 0.f, v.n, -v.n), ps.scene->offset_scale());
   rays.d = frame.to_world(s.wi);
+  // leaves_front (shading_normal.h): by the geometric normal where the shading normal differs.
+  const vi flat = (v.n.x == v.ns.x) & (v.n.y == v.ns.y) & (v.n.z == v.ns.z);
+  const vi front = select(flat, s.wi.z, dot(rays.d, v.n)) > 0.f;
+  rays.o = offset_ray_origin(v.p, select(front, v.n, -v.n), ps.scene->offset_scale());
   rays.tmin = splat(0.f);
   rays.tmax = splat(std::numeric_limits<float>::infinity());
   if (depth >= ps.options->rr_depth) {
@@ -416,7 +435,7 @@ void trace_lanes(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, size
     if (!depth_allows(depth + 1)) break;
     ScalarBsdfs b;
     find_scalar_bsdfs(ps, v, paths.active, b);
-    const LaneFrame frame = frame_from_normal(v.n);
+    const LaneFrame frame = frame_from_normal(v.ns);
     const V3 wo_local = frame.to_local(wo);
     add_next_event(ps, v, b, wo, numbers, paths, counters);
     leave(ps, v, b, frame, wo_local, depth, numbers, paths, rays);

@@ -41,9 +41,6 @@ std::string lanes_lack(const Scene& scene) {
     if (area == nullptr) return "emitters other than area emitters";
     if (area->texture != nullptr) return "a textured emitter";
   }
-  for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
-    if (scene.smooth_shaded(prim)) return "vertex normals";
-  }
   return "";
 }
 
@@ -131,6 +128,8 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     for (int c = 0; c < 3; ++c) copy(scene.vertex(prim, c), t.p[c]);
     copy(scene.normal(prim), t.n);
     t.bsdf = lane_bsdf(scene.material(prim), t.albedo);
+    t.smooth = scene.smooth_shaded(prim) ? -1 : 0;
+    ps.smooth = ps.smooth || t.smooth != 0;
     const Emitter* e = scene.emitter_at(prim);
     t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
   }

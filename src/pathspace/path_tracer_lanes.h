@@ -10,11 +10,12 @@
 // hits (the same as its single-ray hits) and the same exact visibility test. So the image is the
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
-// It covers scenes of flat triangles lit by untextured area emitters, without an environment,
-// unguided: Lambertian, mirror and smooth dielectric materials run lane-wide, every other BSDF
-// and textured materials lane by lane through the scalar code (chosen by name only: such scenes
-// are not always faster in lanes). render_path falls back to the
-// scalar tracer elsewhere (stats "lanes": "off" then).
+// It covers scenes of triangles (flat, or with vertex normals interpolated lane by lane) lit by
+// untextured area emitters, without an environment, unguided: Lambertian, mirror and smooth
+// dielectric materials run lane-wide, every other BSDF and textured materials lane by lane
+// through the scalar code (auto takes them on up to a tenth of the area: such scenes are not
+// always faster in lanes). render_path falls back to the scalar tracer elsewhere (stats "lanes":
+// "off" then).
 #pragma once
 #include <immintrin.h>
 
@@ -46,10 +47,11 @@ namespace dualight {
 constexpr int32_t kLaneLambertian = 0, kLaneMirror = 1, kLaneDielectric = 2, kLaneOther = 3;
 struct LaneTriangle {
   float p[3][3];      // corners
-  float n[3];         // unit geometric normal (= the shading normal: flat triangles only)
+  float n[3];         // unit geometric normal (the shading normal too, unless smooth)
   float albedo[3];    // the Lambertian's albedo, the mirror's reflectance, the dielectric's eta (in [0])
   int32_t emitter;    // index into Scene::emitters(), -1: none
   int32_t bsdf;       // kLaneLambertian, kLaneMirror, kLaneDielectric or kLaneOther
+  int32_t smooth;     // -1: interpolates vertex normals (Scene::shading_normal), 0: flat
 };
 struct LaneEmitter {
   float p[3][3];  // corners
@@ -65,6 +67,7 @@ struct PathLanesScene {
   const PathTracerOptions* options = nullptr;
   std::vector<LaneTriangle> triangles;
   std::vector<LaneEmitter> emitters;
+  bool smooth = false;  // some triangle interpolates vertex normals
 };
 
 // The samplers of a row's lanes: the pixel driver's (a tile's row is one packet of rays).
