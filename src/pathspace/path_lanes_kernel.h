@@ -181,7 +181,10 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   v.p = barycentric_point(tri, v.prim, paths.active, v.b1, v.b2);
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
   v.ns = v.n;
-  if (ps.smooth) v.ns = shading_normals(ps, v, paths.active & gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, smooth)));
+  if (ps.smooth) {
+    const vi smooth = gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, smooth));
+    v.ns = shading_normals(ps, v, paths.active & smooth);
+  }
   v.albedo = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, albedo));
   v.bsdf = gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, bsdf));
   return v;
