@@ -400,9 +400,13 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, 
   paths.prev_pdf_w = s.pdf_w;
   paths.prev_delta = mirror | dielectric | scalar_delta;
   rays.d = frame.to_world(s.wi);
-  // leaves_front (shading_normal.h): by the geometric normal where the shading normal differs.
-  const vi flat = (v.n.x == v.ns.x) & (v.n.y == v.ns.y) & (v.n.z == v.ns.z);
-  const vi front = select(flat, s.wi.z, dot(rays.d, v.n)) > 0.f;
+  // leaves_front (shading_normal.h): by the geometric normal where the shading normal differs
+  // (smooth triangles only).
+  vi front = s.wi.z > 0.f;
+  if (ps.smooth) {
+    const vi flat = (v.n.x == v.ns.x) & (v.n.y == v.ns.y) & (v.n.z == v.ns.z);
+    front = select(flat, front, dot(rays.d, v.n) > 0.f);
+  }
   rays.o = offset_ray_origin(v.p, select(front, v.n, -v.n), ps.scene->offset_scale());
   rays.tmin = splat(0.f);
   rays.tmax = splat(std::numeric_limits<float>::infinity());
