@@ -66,16 +66,14 @@ V3 barycentric_point(const Table* table, vi index, vi active, vf b1, vf b2) {
 }
 
 // The lanes' random numbers: each lane's own sampler, one lane at a time...
-// (Lane i runs on *samplers[first + i].)
 template <class Sampler>
 struct LaneNumbers {
-  LaneSamplers<Sampler>& samplers;
-  size_t first;
-  LaneNumbers(LaneSamplers<Sampler>& s, size_t first_lane) : samplers(s), first(first_lane) {}
+  Sampler* of[kLanes] = {};
+  void start(int i, Sampler& sampler) { of[i] = &sampler; }
   vf next_1d(vi active) {
     alignas(64) float u[kLanes] = {};
     for (int i = 0; i < kLanes; ++i) {
-      if (active[i] != 0) u[i] = samplers[first + static_cast<size_t>(i)]->next_1d();
+      if (active[i] != 0) u[i] = of[i]->next_1d();
     }
     return load(u);
   }
@@ -83,7 +81,7 @@ struct LaneNumbers {
     alignas(64) float a[kLanes] = {}, b[kLanes] = {};
     for (int i = 0; i < kLanes; ++i) {
       if (active[i] == 0) continue;
-      const Point2 p = samplers[first + static_cast<size_t>(i)]->next_2d();
+      const Point2 p = of[i]->next_2d();
       a[i] = p.u, b[i] = p.v;
     }
     u = load(a), v = load(b);
@@ -92,13 +90,10 @@ struct LaneNumbers {
 // ... or, for the independent sampler, their generators stepped together.
 template <>
 struct LaneNumbers<IndependentSampler> {
-  LanePcg32 rng{};
-  LaneNumbers(LaneSamplers<IndependentSampler>& samplers, size_t first) {
-    for (int i = 0; i < kLanes; ++i) {
-      const auto& s = samplers[first + static_cast<size_t>(i)];
-      rng.state[i] = s ? s->rng().state() : 0u;
-      rng.inc[i] = s ? s->rng().increment() : 1u;
-    }
+  LanePcg32 rng{vu64{}, vu64{} + 1u};  // lanes not started never advance
+  void start(int i, const IndependentSampler& sampler) {
+    rng.state[i] = sampler.rng().state();
+    rng.inc[i] = sampler.rng().increment();
   }
   vf next_1d(vi active) { return rng.next_float(active); }
   void next_2d(vi active, vf& u, vf& v) {
@@ -380,7 +375,7 @@ inline LaneBsdfSample sample_scalar_bsdfs(const ScalarBsdfs& b, vi lanes, const 
 // lanes whose path ends there leave `active`.
 template <class Sampler>
 void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const LaneFrame& frame,
-           const V3& wo_local, int depth, LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
+           const V3& wo_local, vi depth, LaneNumbers<Sampler>& numbers, LanePaths& paths, LaneRays& rays) {
   vf u1, u2;
   numbers.next_2d(paths.active, u1, u2);
   const vi mirror = v.bsdf == kLaneMirror, dielectric = v.bsdf == kLaneDielectric;
@@ -410,56 +405,101 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, 
   rays.o = offset_ray_origin(v.p, select(front, v.n, -v.n), ps.scene->offset_scale());
   rays.tmin = splat(0.f);
   rays.tmax = splat(std::numeric_limits<float>::infinity());
-  if (depth >= ps.options->rr_depth) {
+  const vi roulette = paths.active & (depth >= ps.options->rr_depth);
+  if (any(roulette)) {
     const vf q = min(max_component(paths.beta) * paths.roulette_scale, splat(0.95f));  // roulette_survival
-    const vi go_on = numbers.next_1d(paths.active) < q;
-    paths.active &= go_on;
-    paths.beta = paths.beta / q;
+    const vi go_on = numbers.next_1d(roulette) < q;
+    paths.active &= go_on | ~roulette;
+    paths.beta = select(roulette, paths.beta / q, paths.beta);
   }
 }
 
-// extend_path for lanes [first, first + n) of a row (n <= kLanes) from their camera rays;
-// out[i]: lane first + i's radiance estimate.
+// The lanes' paths, the pixel sample each traces (-1: none) and its sampler.
 template <class Sampler>
-void trace_lanes(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, size_t first, const float* x,
-                 const float* y, int n, TraceCounters& counters, Color* out) {
-  alignas(64) float o[3][kLanes] = {}, d[3][kLanes] = {}, tmin[kLanes] = {}, tmax[kLanes] = {};
-  alignas(64) int32_t active[kLanes] = {};
-  for (int i = 0; i < n; ++i) {
-    const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(x[i], y[i]));
-    for (int k = 0; k < 3; ++k) o[k][i] = r.o[k], d[k][i] = r.d[k];
-    tmin[i] = r.tmin, tmax[i] = r.tmax, active[i] = -1;
-  }
-  LaneRays rays{{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
-  LanePaths paths{load(active), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1), splat(1.f)};
-  LaneNumbers<Sampler> numbers(samplers, first);
+struct LaneState {
+  LaneRays rays{};
+  LanePaths paths{splat_i(0), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1), splat(1.f)};
+  vi depth = splat_i(1);  // the vertex the next ray finds is the path's depth-th
+  int32_t sample[kLanes];
+  std::optional<Sampler> samplers[kLanes];
+  LaneNumbers<Sampler> numbers;
+  LaneState() { std::fill(std::begin(sample), std::end(sample), -1); }
+};
+
+// The pixel samples of a batch estimate (pixel_driver.h), and the next one no lane has taken.
+struct LaneBatch {
+  uint64_t seed;
+  int film_width;
+  const PixelSample* samples;
+  size_t n, next;
+};
+
+// Path regeneration [Novák et al. 2010]: each lane whose path has ended writes its estimate,
+// and takes the batch's next sample (trace_path's start: its sampler, film position and camera
+// ray; a new path, extend_path's initial state). Returns whether any lane's path goes on.
+template <class Sampler>
+bool regenerate(const PathLanesScene& ps, LaneBatch& batch, LaneState<Sampler>& st, Color* values) {
   const int max_depth = ps.options->max_depth;
-  const auto depth_allows = [&](int segments) { return max_depth < 0 || segments <= max_depth; };
-  for (int depth = 1; depth_allows(depth) && any(paths.active); ++depth) {
-    const LaneVertex v = intersect(ps, rays, paths, counters);
-    const V3 wo = -rays.d;
-    add_emission(ps, v, wo, paths);
-    if (!depth_allows(depth + 1)) break;
-    ScalarBsdfs b;
-    find_scalar_bsdfs(ps, v, paths.active, b);
-    const LaneFrame frame = frame_from_normal(v.ns);
-    const V3 wo_local = frame.to_local(wo);
-    add_next_event(ps, v, b, wo, numbers, paths, counters);
-    leave(ps, v, b, frame, wo_local, depth, numbers, paths, rays);
+  alignas(64) float o[3][kLanes], d[3][kLanes], tmin[kLanes], tmax[kLanes];
+  store(o[0], st.rays.o.x), store(o[1], st.rays.o.y), store(o[2], st.rays.o.z);
+  store(d[0], st.rays.d.x), store(d[1], st.rays.d.y), store(d[2], st.rays.d.z);
+  store(tmin, st.rays.tmin), store(tmax, st.rays.tmax);
+  alignas(64) int32_t fresh[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (st.paths.active[i] != 0) continue;
+    if (st.sample[i] >= 0) values[st.sample[i]] = Color(st.paths.L.x[i], st.paths.L.y[i], st.paths.L.z[i]);
+    st.sample[i] = -1;
+    // A path of no segments (max_depth 0) ends where it starts, with no radiance.
+    for (; batch.next < batch.n && max_depth == 0; ++batch.next) values[batch.next] = Color(0.f);
+    if (batch.next == batch.n) continue;
+    st.sample[i] = static_cast<int32_t>(batch.next);
+    const Point2 position = start_sample(batch.seed, batch.film_width, batch.samples[batch.next++], st.samplers[i]);
+    st.numbers.start(i, *st.samplers[i]);
+    const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(position.u, position.v));
+    for (int k = 0; k < 3; ++k) o[k][i] = r.o[k], d[k][i] = r.d[k];
+    tmin[i] = r.tmin, tmax[i] = r.tmax, fresh[i] = -1;
   }
-  alignas(64) float L[3][kLanes];
-  store(L[0], paths.L.x), store(L[1], paths.L.y), store(L[2], paths.L.z);
-  for (int i = 0; i < n; ++i) out[i] = Color(L[0][i], L[1][i], L[2][i]);
+  const vi start = load(fresh);
+  if (!any(start)) return any(st.paths.active);
+  st.rays = {{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
+  LanePaths& p = st.paths;
+  p.active |= start;
+  p.beta = select(start, splat(Vec3(1.f)), p.beta);
+  p.L = select(start, splat(Vec3(0.f)), p.L);
+  p.prev_pdf_w = select(start, splat(0.f), p.prev_pdf_w);
+  p.prev_delta = select(start, splat_i(-1), p.prev_delta);
+  p.roulette_scale = select(start, splat(1.f), p.roulette_scale);
+  st.depth = select(start, splat_i(1), st.depth);
+  return true;
 }
 
-// TracePathLanes (path_tracer_lanes.h): the row's lanes, kLanes at a time.
+// extend_path's step for every running lane: the vertex its ray finds, the emission seen there,
+// and (where the path may grow) next-event estimation and the next ray.
 template <class Sampler>
-[[gnu::flatten]] void trace_paths(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x,
-                                  const float* y, int n, TraceCounters& counters, Color* out) {
-  for (int first = 0; first < n; first += kLanes) {
-    trace_lanes(ps, samplers, static_cast<size_t>(first), x + first, y + first, std::min(kLanes, n - first), counters,
-                out + first);
-  }
+void bounce(const PathLanesScene& ps, LaneState<Sampler>& st, TraceCounters& counters) {
+  LanePaths& paths = st.paths;
+  const LaneVertex v = intersect(ps, st.rays, paths, counters);
+  const V3 wo = -st.rays.d;
+  add_emission(ps, v, wo, paths);
+  const int max_depth = ps.options->max_depth;
+  if (max_depth >= 0) paths.active &= st.depth < max_depth;  // depth_allows(depth + 1)
+  if (!any(paths.active)) return;
+  ScalarBsdfs b;
+  find_scalar_bsdfs(ps, v, paths.active, b);
+  const LaneFrame frame = frame_from_normal(v.ns);
+  const V3 wo_local = frame.to_local(wo);
+  add_next_event(ps, v, b, wo, st.numbers, paths, counters);
+  leave(ps, v, b, frame, wo_local, st.depth, st.numbers, paths, st.rays);
+  st.depth = st.depth + 1;
+}
+
+// TracePathLanes (path_tracer_lanes.h): the batch's samples, kLanes paths at a time.
+template <class Sampler>
+[[gnu::flatten]] void trace_paths(const PathLanesScene& ps, uint64_t seed, int film_width, const PixelSample* samples,
+                                  size_t n, TraceCounters& counters, Color* values) {
+  LaneBatch batch{seed, film_width, samples, n, 0};
+  LaneState<Sampler> st;
+  while (regenerate(ps, batch, st, values)) bounce(ps, st, counters);
 }
 
 }  // namespace dualight::DUALIGHT_LANES_NS

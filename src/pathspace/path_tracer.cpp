@@ -299,8 +299,10 @@ RenderStats drive_path_lanes(const Scene& scene, const PinholeCamera& camera, co
     const TracePathLanes<Sampler> trace = lanes_for<Sampler>(kernels);
     return drive_pixels<Sampler>(
         film, driver, control,
-        row_estimate([&](const float* x, const float* y, RowSamplers<Sampler>& samplers, int n,
-                         TraceCounters& counters, Color* out) { trace(ps, samplers, x, y, n, counters, out); }));
+        batch_estimate(
+            [&](const PixelSample* samples, size_t n, TraceCounters& counters, Color* values) {
+              trace(ps, driver.seed, film.width(), samples, n, counters, values);
+            }));
   });
   stats.lanes = kernels.isa;
   return stats;

@@ -1,7 +1,8 @@
-// The path tracer in lanes: the camera paths of a tile's row (sixteen pixels, at one sample
-// index) advance together, their rays traced as Embree packets and their shading computed in
-// SIMD lanes (core/lanes.h: sixteen at a time with AVX-512, eight with AVX2, four with SSE2),
-// compiled for each and chosen at run time by what the CPU supports (AVX-512, else AVX2: see
+// The path tracer in lanes: the camera paths of a batch of pixel samples (a tile's, up to 256)
+// advance sixteen at a time, their rays traced as Embree packets and their shading computed in
+// SIMD lanes (core/lanes.h: sixteen at a time with AVX-512, eight with AVX2, four with SSE2); a
+// lane whose path ends takes the batch's next sample. Compiled for each instruction set and
+// chosen at run time by what the CPU supports (AVX-512, else AVX2: see
 // choose_path_lanes). As in Mitsuba 3's vectorised variants, lanes are paths, not rays of one path.
 //
 // Each lane computes exactly what the scalar path tracer (path_tracer.cpp) computes for its
@@ -70,17 +71,12 @@ struct PathLanesScene {
   bool smooth = false;  // some triangle interpolates vertex normals
 };
 
-// The samplers of a row's lanes: the pixel driver's (a tile's row is one packet of rays).
+// Traces the pixel samples [0, n) (pixel_driver.h's batch estimate): a lane that ends its path
+// takes the next sample (path regeneration [Novák et al. 2010]), so the lanes stay busy while
+// path lengths differ; values[i]: sample i's radiance estimate.
 template <class Sampler>
-using LaneSamplers = RowSamplers<Sampler>;
-static_assert(pixel_driver_detail::kTile == RayPacket::kLanes);
-
-// Traces lanes [0, n) (n <= RayPacket::kLanes): lane i starts at film position (x[i], y[i]) with
-// *samplers[i] (its first 2D sample already spent on that position) and writes its radiance
-// estimate to out[i].
-template <class Sampler>
-using TracePathLanes = void (*)(const PathLanesScene& ps, LaneSamplers<Sampler>& samplers, const float* x,
-                                const float* y, int n, TraceCounters& counters, Color* out);
+using TracePathLanes = void (*)(const PathLanesScene& ps, uint64_t seed, int film_width, const PixelSample* samples,
+                                size_t n, TraceCounters& counters, Color* values);
 
 struct PathLanesKernels {
   const char* isa = nullptr;  // "sse2", "avx2", "avx512"

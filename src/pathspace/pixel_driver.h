@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -38,19 +39,32 @@ namespace pixel_driver_detail {
 constexpr int kTile = 16;
 }  // namespace pixel_driver_detail
 
-// A row estimate estimates the pixels of a tile's row at one sample index in one call (the path
-// tracer in lanes, path_tracer_lanes.h): f(x, y, samplers, n, counters, values) gets n film
-// positions (x[i], y[i]) and their samplers (*samplers[i], whose first 2D sample placed the
-// position, as for a per-pixel estimate) and writes values[i]. Row estimates take no splats.
-template <class Sampler>
-using RowSamplers = std::array<std::optional<Sampler>, pixel_driver_detail::kTile>;
+// A pixel sample: pixel (x, y) at sample index s.
+struct PixelSample {
+  int x, y;
+  uint32_t s;
+};
+
+// A batch estimate estimates many pixel samples in one call (the path tracer in lanes,
+// path_tracer_lanes.h, which keeps its lanes busy with them): f(samples, n, counters, values)
+// writes values[i], the estimate of samples[i], and starts each sample with start_sample (its
+// sampler and film position, as for a per-pixel estimate). Batch estimates take no splats.
 template <class F>
-struct RowEstimate {
+struct BatchEstimate {
   F f;
 };
 template <class F>
-RowEstimate<F> row_estimate(F f) {
+BatchEstimate<F> batch_estimate(F f) {
   return {std::move(f)};
+}
+
+// Sample p's sampler (its own random stream, in `sampler`) and the film position its first 2D
+// sample picks in the pixel.
+template <class Sampler>
+Point2 start_sample(uint64_t seed, int film_width, const PixelSample& p, std::optional<Sampler>& sampler) {
+  const Point2 jitter =
+      sampler.emplace(seed, static_cast<size_t>(p.y) * static_cast<size_t>(film_width) + p.x, p.s).next_2d();
+  return {static_cast<float>(p.x) + jitter.u, static_cast<float>(p.y) + jitter.v};
 }
 
 namespace pixel_driver_detail {
@@ -91,36 +105,15 @@ inline void add_sample(Film& film, size_t pixel, uint32_t s, Color value, uint64
 template <class Sampler, class Estimate>
 uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
                     const Estimate& estimate, TraceCounters& local, uint64_t& invalid, SplatList& splats) {
+  std::optional<Sampler> sampler;
   for (int x = x0; x < x1; ++x) {
-    const size_t pixel = static_cast<size_t>(y) * film.width() + x;
-    Sampler sampler(opt.seed, pixel, s);
-    const Point2 jitter = sampler.next_2d();
+    const Point2 position = start_sample(opt.seed, film.width(), {x, y, s}, sampler);
     splats.begin_path();
-    const Color value =
-        estimate(static_cast<float>(x) + jitter.u, static_cast<float>(y) + jitter.v, sampler, local, splats);
+    const Color value = estimate(position.u, position.v, *sampler, local, splats);
     splats.end_path();
-    add_sample(film, pixel, s, value, invalid);
+    add_sample(film, static_cast<size_t>(y) * film.width() + x, s, value, invalid);
   }
   return static_cast<uint32_t>(x1 - x0);
-}
-
-// The same for a row estimate: the same samplers, film positions and sums, in one call.
-template <class Sampler, class F>
-uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
-                    const RowEstimate<F>& estimate, TraceCounters& local, uint64_t& invalid, SplatList&) {
-  RowSamplers<Sampler> samplers;
-  float px[kTile], py[kTile];
-  const int n = x1 - x0;
-  for (int i = 0; i < n; ++i) {
-    Sampler& sampler = samplers[static_cast<size_t>(i)].emplace(opt.seed, static_cast<size_t>(y) * film.width() + x0 + i, s);
-    const Point2 jitter = sampler.next_2d();
-    px[i] = static_cast<float>(x0 + i) + jitter.u;
-    py[i] = static_cast<float>(y) + jitter.v;
-  }
-  Color value[kTile];
-  estimate.f(px, py, samplers, n, local, value);
-  for (int i = 0; i < n; ++i) add_sample(film, static_cast<size_t>(y) * film.width() + x0 + i, s, value[i], invalid);
-  return static_cast<uint32_t>(n);
 }
 
 // Sample indices [first, first + count) of every pixel of a tile (or of a row of one), sample
@@ -139,6 +132,40 @@ void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, u
     if (sample_ends != nullptr) sample_ends->emplace_back(splats.splats().size(), row_paths);
     control.done.fetch_add(row_paths, std::memory_order_relaxed);
   }
+}
+
+// The same for a batch estimate: the same samples, in batches of up to kBatch (whole rows, in the
+// same order), their values added to the film in that order, so the sums are the same.
+// Cancellation is seen between batches.
+constexpr size_t kBatch = static_cast<size_t>(kTile) * kTile;
+template <class Sampler, class F>
+void render_tile(Film& film, const PixelDriverOptions&, const TileRect& r, uint32_t first, uint32_t count,
+                 const BatchEstimate<F>& estimate, RenderControl& control, TraceCounters& local, uint64_t& invalid,
+                 SplatList&, std::vector<std::pair<size_t, uint32_t>>* sample_ends) {
+  if (sample_ends != nullptr) throw std::logic_error("batch estimates take no light paths");
+  std::array<PixelSample, kBatch> batch;
+  std::array<Color, kBatch> values;
+  size_t n = 0;
+  const auto flush = [&] {
+    estimate.f(batch.data(), n, local, values.data());
+    for (size_t i = 0; i < n; ++i) {
+      const PixelSample& p = batch[i];
+      add_sample(film, static_cast<size_t>(p.y) * film.width() + p.x, p.s, values[i], invalid);
+    }
+    control.done.fetch_add(n, std::memory_order_relaxed);
+    n = 0;
+  };
+  const auto row = static_cast<size_t>(r.x1 - r.x0);
+  for (uint32_t s = first; s < first + count; ++s) {
+    for (int y = r.y0; y < r.y1; ++y) {
+      if (n + row > kBatch) {
+        flush();
+        if (control.cancelled()) return;
+      }
+      for (int x = r.x0; x < r.x1; ++x) batch[n++] = {x, y, s};
+    }
+  }
+  flush();
 }
 
 // Adds the pass's splats to the film by sample index, then in unit order: `units` holds each
