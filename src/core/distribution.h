@@ -1,6 +1,7 @@
 // Discrete distribution over weighted items, sampled by inverting its CDF.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -24,6 +25,19 @@ class DiscreteDistribution {
   size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
   double total() const { return total_; }
   float pmf(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
+
+  // The floats sample() compares u against: the smallest float at or past each item's end
+  // (cdf_[1..size()], rounded up), so that sample(u) picks min(#{k : u >= ends[k]}, size() - 1)
+  // (for lanes: the same choice in float comparisons, without a search).
+  std::vector<float> float_item_ends() const {
+    std::vector<float> ends;
+    for (size_t k = 1; k < cdf_.size(); ++k) {
+      float f = static_cast<float>(cdf_[k]);
+      if (static_cast<double>(f) < cdf_[k]) f = std::nextafter(f, 2.f);
+      ends.push_back(f);
+    }
+    return ends;
+  }
 
   // Returns the item index and rescales u to [0, 1) within the chosen item for reuse.
   size_t sample(float& u) const {

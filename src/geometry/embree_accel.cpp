@@ -1,6 +1,7 @@
 #include "geometry/embree_accel.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -338,6 +339,50 @@ void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
     for (int first = 0; first < RayPacket::kLanes; first += 8) {
       intersect_lanes<RTCRayHit8, 8>(impl_->scene.get(), rays, valid, first, hits);
     }
+  }
+}
+
+// Whether RayHit16 is the Embree compiled against's RTCRayHit16 (Embree 3's is; Embree 4's may
+// hold more instance fields).
+constexpr bool same_layout() {
+  using R = RTCRayHit16;
+  return sizeof(RayHit16) == sizeof(R) && offsetof(RayHit16, ox) == offsetof(R, ray.org_x) &&
+         offsetof(RayHit16, tmin) == offsetof(R, ray.tnear) && offsetof(RayHit16, dx) == offsetof(R, ray.dir_x) &&
+         offsetof(RayHit16, time) == offsetof(R, ray.time) && offsetof(RayHit16, tmax) == offsetof(R, ray.tfar) &&
+         offsetof(RayHit16, mask) == offsetof(R, ray.mask) && offsetof(RayHit16, id) == offsetof(R, ray.id) &&
+         offsetof(RayHit16, flags) == offsetof(R, ray.flags) && offsetof(RayHit16, ngx) == offsetof(R, hit.Ng_x) &&
+         offsetof(RayHit16, u) == offsetof(R, hit.u) && offsetof(RayHit16, v) == offsetof(R, hit.v) &&
+         offsetof(RayHit16, prim) == offsetof(R, hit.primID) && offsetof(RayHit16, geom) == offsetof(R, hit.geomID) &&
+         offsetof(RayHit16, inst) == offsetof(R, hit.instID);
+}
+
+void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
+  constexpr int kLanes = RayHit16::kLanes;
+  static_assert(kLanes == RayPacket::kLanes);
+  alignas(64) int valid[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    valid[i] = -(embree_accepts(p.ox[i], p.oy[i], p.oz[i], p.dx[i], p.dy[i], p.dz[i], p.tmax[i]) & (active[i] != 0));
+    p.time[i] = 0.f, p.mask[i] = 0xffffffffu, p.id[i] = static_cast<uint32_t>(i), p.flags[i] = 0;
+    p.geom[i] = RTC_INVALID_GEOMETRY_ID, p.inst[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  if constexpr (same_layout()) {
+    if (impl_->packet_width == 16) {
+      rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p));
+      for (int i = 0; i < kLanes; ++i) p.prim[i] = valid[i] != 0 && p.geom[i] != RTC_INVALID_GEOMETRY_ID ? p.prim[i] : RayHit::kNoHit;
+      return;
+    }
+  }
+  RayPacket rays;  // through the copying query
+  for (int i = 0; i < kLanes; ++i) {
+    rays.set(i, Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, p.tmax[i], p.tmin[i]});
+    rays.active[i] = active[i];
+  }
+  HitPacket hits;
+  intersect(rays, hits);
+  for (int i = 0; i < kLanes; ++i) {
+    p.prim[i] = hits.prim[i];
+    if (hits.prim[i] == RayHit::kNoHit) continue;
+    p.tmax[i] = hits.t[i], p.u[i] = hits.u[i], p.v[i] = hits.v[i];
   }
 }
 

@@ -44,6 +44,21 @@ struct HitPacket {
   alignas(64) uint32_t prim[RayPacket::kLanes];
 };
 
+// Sixteen rays and their closest hits in Embree's own packet layout (RTCRayHit16's, where the
+// Embree compiled against has that layout: embree_accel.cpp checks it, else copies), so lane code
+// fills and reads a packet without copies. The caller sets o, tmin, d and tmax; the query sets the
+// rest: where lane i's ray hits, tmax[i] becomes the hit's t and u, v, prim are set; prim is
+// RayHit::kNoHit where it does not.
+struct alignas(64) RayHit16 {
+  static constexpr int kLanes = 16;
+  float ox[kLanes], oy[kLanes], oz[kLanes], tmin[kLanes];
+  float dx[kLanes], dy[kLanes], dz[kLanes], time[kLanes];
+  float tmax[kLanes];
+  uint32_t mask[kLanes], id[kLanes], flags[kLanes];
+  float ngx[kLanes], ngy[kLanes], ngz[kLanes], u[kLanes], v[kLanes];
+  uint32_t prim[kLanes], geom[kLanes], inst[kLanes];
+};
+
 class EmbreeAccel {
  public:
   // positions: 3 floats per vertex; triangles: 3 indices per triangle. Copied into Embree buffers.
@@ -66,6 +81,8 @@ class EmbreeAccel {
   // occluded(rays.ray(i), filters[i]) (filters[i] may be null). Inactive lanes miss and are not blocked.
   void intersect(const RayPacket& rays, HitPacket& hits) const;
   void occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const;
+  // The same as intersect(RayPacket) in place, for the lanes where active[i] != 0.
+  void intersect(const int32_t* active, RayHit16& packet) const;
 
  private:
   struct Impl;

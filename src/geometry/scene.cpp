@@ -1,6 +1,7 @@
 #include "geometry/scene.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <new>
 #include <stdexcept>
@@ -194,6 +195,18 @@ void Scene::intersect(const RayPacket& rays, HitPacket& hits) const {
     rh.t = hits.t[i], rh.u = hits.u[i], rh.v = hits.v[i], rh.prim = hits.prim[i];
     rh = past_start_plane(rays.ray(i), rh);  // rare: as intersect() below
     hits.t[i] = rh.t, hits.u[i] = rh.u, hits.v[i] = rh.v, hits.prim[i] = rh.prim;
+  }
+}
+
+void Scene::intersect(const int32_t* active, RayHit16& p) const {
+  alignas(64) float tmax[RayHit16::kLanes];  // the rays' own, for past_start_plane
+  std::memcpy(tmax, p.tmax, sizeof tmax);
+  accel_->intersect(active, p);
+  for (int i = 0; i < RayHit16::kLanes; ++i) {
+    if (p.prim[i] == RayHit::kNoHit || p.tmax[i] != 0.f) continue;
+    const RayHit rh = past_start_plane(Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, tmax[i], p.tmin[i]},
+                                       RayHit{p.tmax[i], p.u[i], p.v[i], p.prim[i]});  // rare: as intersect() below
+    p.tmax[i] = rh.t, p.u[i] = rh.u, p.v[i] = rh.v, p.prim[i] = rh.prim;
   }
 }
 

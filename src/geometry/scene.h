@@ -115,6 +115,9 @@ class Scene {
     const size_t i = emitter_sampler_.sample(u);
     return {&emitters_[i], emitter_sampler_.pmf(i)};
   }
+  // choose_emitter(u) picks min(#{k : u >= ends[k]}, emitter_count() - 1) of these ends
+  // (DiscreteDistribution::float_item_ends).
+  std::vector<float> emitter_choice_ends() const { return emitter_sampler_.float_item_ends(); }
   float emitter_pmf(const Emitter& e) const { return emitter_sampler_.pmf(static_cast<size_t>(&e - emitters_.data())); }
   // p moved off its surface along n by offset_ray_origin (core/ray.h) at this scene's scale: the
   // largest side of the bounding box, capped at 1 (a power of two, so offsets stay exact).
@@ -164,6 +167,8 @@ class Scene {
   // visible(p0, n0, p1, target, origin) of lane i, whose o0 is shadow_origin(p0, n0, p1) (0 for
   // inactive lanes).
   void intersect(const RayPacket& rays, HitPacket& hits) const;
+  // The same in place (EmbreeAccel's RayHit16), for the lanes where active[i] != 0.
+  void intersect(const int32_t* active, RayHit16& packet) const;
   struct ShadowPacket {
     static constexpr int kLanes = RayPacket::kLanes;
     alignas(64) float o0x[kLanes], o0y[kLanes], o0z[kLanes];

@@ -22,6 +22,7 @@ class PowerEmitterSampler {
   // Index of the emitter u picks (u in [0, 1); there must be emitters).
   size_t sample(float u) const { return distribution_.sample(u); }
   float pmf(size_t i) const { return distribution_.pmf(i); }
+  std::vector<float> float_item_ends() const { return distribution_.float_item_ends(); }
 
  private:
   DiscreteDistribution distribution_;

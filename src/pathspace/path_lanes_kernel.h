@@ -159,20 +159,20 @@ inline V3 shading_normals(const PathLanesScene& ps, const LaneVertex& v, vi smoo
 
 // Scene::intersect for the active lanes: those that find nothing end (no environment).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
-  RayPacket packet;
-  if constexpr (kLanes < RayPacket::kLanes) std::fill(std::begin(packet.active), std::end(packet.active), 0);
+  RayHit16 packet;
+  if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
+  alignas(64) int32_t active[RayHit16::kLanes] = {};
   store(packet.ox, r.o.x), store(packet.oy, r.o.y), store(packet.oz, r.o.z);
   store(packet.dx, r.d.x), store(packet.dy, r.d.y), store(packet.dz, r.d.z);
-  store(packet.tmin, r.tmin), store(packet.tmax, r.tmax), store(packet.active, paths.active);
-  HitPacket hits;
-  ps.scene->intersect(packet, hits);
+  store(packet.tmin, r.tmin), store(packet.tmax, r.tmax), store(active, paths.active);
+  ps.scene->intersect(active, packet);
   counters.rays += count(paths.active);
   LaneVertex v;
-  v.prim = load(reinterpret_cast<const int32_t*>(hits.prim));
+  v.prim = load(reinterpret_cast<const int32_t*>(packet.prim));
   paths.active &= v.prim != -1;
   const LaneTriangle* tri = ps.triangles.data();
   v.emitter = select(paths.active, gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, emitter)), splat_i(-1));
-  v.t = load(hits.t), v.b1 = load(hits.u), v.b2 = load(hits.v);
+  v.t = load(packet.tmax), v.b1 = load(packet.u), v.b2 = load(packet.v);
   v.p = barycentric_point(tri, v.prim, paths.active, v.b1, v.b2);
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
   v.ns = v.n;
@@ -262,6 +262,22 @@ inline void evaluate_scalar_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi 
   pdf_w = load(pdf);
 }
 
+// Scene::choose_emitter's choice for the `active` lanes: its comparisons counted lane-wide where
+// the scene has few emitters, else its search lane by lane.
+inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
+  if (!ps.emitter_ends.empty()) {
+    vi passed = splat_i(0);
+    for (const float end : ps.emitter_ends) passed -= u >= end;
+    const auto last = static_cast<int32_t>(ps.emitter_ends.size()) - 1;
+    return select(passed < last, passed, splat_i(last));
+  }
+  alignas(64) int32_t chosen[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (active[i] != 0) chosen[i] = static_cast<int32_t>(ps.scene->choose_emitter(u[i]).emitter - ps.scene->emitters().data());
+  }
+  return load(chosen);
+}
+
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
 // MIS-weighted against BSDF sampling, through its shadow ray.
 template <class Sampler>
@@ -275,11 +291,7 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const vf u_select = numbers.next_1d(active);
   vf u, w;
   numbers.next_2d(active, u, w);
-  alignas(64) int32_t chosen[kLanes] = {};
-  for (int i = 0; i < kLanes; ++i) {
-    if (active[i] != 0) chosen[i] = static_cast<int32_t>(ps.scene->choose_emitter(u_select[i]).emitter - ps.scene->emitters().data());
-  }
-  const vi e = load(chosen);
+  const vi e = choose_emitter(ps, u_select, active);
   const LaneEmitter* em = ps.emitters.data();
   // pdf_Le_position: the choice's pmf over the area, the emitter's pmf.
   const vf pdf_a = gather_field(em, e, active, offsetof(LaneEmitter, pdf_a));

@@ -143,6 +143,7 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     le.prim = a.prim;
     ps.emitters.push_back(le);
   }
+  if (scene.emitter_count() <= PathLanesScene::kCountedEmitters) ps.emitter_ends = scene.emitter_choice_ends();
   return ps;
 }
 

@@ -68,6 +68,10 @@ struct PathLanesScene {
   const PathTracerOptions* options = nullptr;
   std::vector<LaneTriangle> triangles;
   std::vector<LaneEmitter> emitters;
+  // Scene::emitter_choice_ends where there are at most kCountedEmitters (the kernel counts the
+  // ends a sample passes), else empty (it searches lane by lane).
+  static constexpr size_t kCountedEmitters = 32;
+  std::vector<float> emitter_ends;
   bool smooth = false;  // some triangle interpolates vertex normals
 };
 

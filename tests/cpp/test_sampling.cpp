@@ -132,6 +132,35 @@ TEST_CASE("discrete_distribution_samples_in_proportion") {
   CHECK(threw);
 }
 
+// The lanes count the item ends u passes instead of searching: the same item for every u,
+// including the floats next to each end (where rounding the ends down instead of up fails).
+TEST_CASE("counting_float_item_ends_picks_what_sample_picks") {
+  Pcg32 rng(7, 8);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> weights(1 + rng.next_uint() % 40);
+    for (double& w : weights) w = rng.next_float() < 0.2f ? 0.0 : std::exp(8.0 * rng.next_float());
+    weights[rng.next_uint() % weights.size()] = 1.0;
+    const DiscreteDistribution d(weights);
+    const std::vector<float> ends = d.float_item_ends();
+    REQUIRE(ends.size() == d.size());
+    std::vector<float> us;
+    for (int i = 0; i < 200; ++i) us.push_back(rng.next_float());
+    for (const float end : ends) {
+      for (float u = std::nextafter(std::nextafter(end, 0.f), 0.f), k = 0; k < 5; u = std::nextafter(u, 1.f), ++k) {
+        if (u >= 0.f && u < 1.f) us.push_back(u);
+      }
+    }
+    bool same = true;
+    for (float u : us) {
+      size_t passed = 0;
+      for (const float end : ends) passed += u >= end ? 1 : 0;
+      float v = u;
+      same = same && std::min(passed, d.size() - 1) == d.sample(v);
+    }
+    CHECK(same);
+  }
+}
+
 TEST_CASE("frames_are_orthonormal_for_any_normal") {
   Pcg32 rng(7, 8);
   for (int i = 0; i < 10000; ++i) {
