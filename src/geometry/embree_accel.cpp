@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -342,6 +343,8 @@ void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
   }
 }
 
+namespace {
+
 // Whether RayHit16 is the Embree compiled against's RTCRayHit16 (Embree 3's is; Embree 4's may
 // hold more instance fields).
 constexpr bool same_layout() {
@@ -356,15 +359,54 @@ constexpr bool same_layout() {
          offsetof(RayHit16, inst) == offsetof(R, hit.instID);
 }
 
-void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
-  constexpr int kLanes = RayHit16::kLanes;
-  static_assert(kLanes == RayPacket::kLanes);
-  alignas(64) int valid[kLanes];
-  for (int i = 0; i < kLanes; ++i) {
+// Embree's lane masks (-1: trace) for the active lanes whose rays it accepts (embree_accepts),
+// and the ray fields the caller does not set.
+void prepare_lanes(const int32_t* active, RayHit16& p, int* valid) {
+  for (int i = 0; i < RayHit16::kLanes; ++i) {
     valid[i] = -(embree_accepts(p.ox[i], p.oy[i], p.oz[i], p.dx[i], p.dy[i], p.dz[i], p.tmax[i]) & (active[i] != 0));
     p.time[i] = 0.f, p.mask[i] = 0xffffffffu, p.id[i] = static_cast<uint32_t>(i), p.flags[i] = 0;
     p.geom[i] = RTC_INVALID_GEOMETRY_ID, p.inst[i] = RTC_INVALID_GEOMETRY_ID;
   }
+}
+
+// The rays of a RayHit16 as a RayPacket (for the copying queries).
+RayPacket packet_rays(const int32_t* active, const RayHit16& p) {
+  RayPacket rays;
+  for (int i = 0; i < RayHit16::kLanes; ++i) {
+    rays.set(i, Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, p.tmax[i], p.tmin[i]});
+    rays.active[i] = active[i];
+  }
+  return rays;
+}
+
+}  // namespace
+
+void EmbreeAccel::occluded(const int32_t* active, RayHit16& p) const {
+  constexpr int kLanes = RayHit16::kLanes;
+  alignas(64) int valid[kLanes];
+  prepare_lanes(active, p, valid);
+  if constexpr (same_layout() && offsetof(RTCRayHit16, ray) == 0) {
+    if (impl_->packet_width == 16) {
+      for (int i = 0; i < kLanes; ++i) {
+        if (active[i] != 0 && valid[i] == 0) p.tmax[i] = -std::numeric_limits<float>::infinity();
+      }
+      FilterContext fc{};
+      rtc_occluded<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRay16*>(&p), fc, false);
+      return;
+    }
+  }
+  int32_t blocked[kLanes];
+  occluded(packet_rays(active, p), nullptr, blocked);
+  for (int i = 0; i < kLanes; ++i) {
+    if (active[i] != 0 && blocked[i] != 0) p.tmax[i] = -std::numeric_limits<float>::infinity();
+  }
+}
+
+void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
+  constexpr int kLanes = RayHit16::kLanes;
+  static_assert(kLanes == RayPacket::kLanes);
+  alignas(64) int valid[kLanes];
+  prepare_lanes(active, p, valid);
   if constexpr (same_layout()) {
     if (impl_->packet_width == 16) {
       rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p));
@@ -372,13 +414,8 @@ void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
       return;
     }
   }
-  RayPacket rays;  // through the copying query
-  for (int i = 0; i < kLanes; ++i) {
-    rays.set(i, Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, p.tmax[i], p.tmin[i]});
-    rays.active[i] = active[i];
-  }
   HitPacket hits;
-  intersect(rays, hits);
+  intersect(packet_rays(active, p), hits);
   for (int i = 0; i < kLanes; ++i) {
     p.prim[i] = hits.prim[i];
     if (hits.prim[i] == RayHit::kNoHit) continue;

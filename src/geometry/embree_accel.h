@@ -81,8 +81,11 @@ class EmbreeAccel {
   // occluded(rays.ray(i), filters[i]) (filters[i] may be null). Inactive lanes miss and are not blocked.
   void intersect(const RayPacket& rays, HitPacket& hits) const;
   void occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const;
-  // The same as intersect(RayPacket) in place, for the lanes where active[i] != 0.
+  // The same as intersect(RayPacket) in place, for the lanes where active[i] != 0; and as
+  // occluded(RayPacket) without filters: where lane i's ray is blocked, or Embree would not take
+  // it (counted as blocked), tmax[i] becomes negative.
   void intersect(const int32_t* active, RayHit16& packet) const;
+  void occluded(const int32_t* active, RayHit16& packet) const;
 
  private:
   struct Impl;

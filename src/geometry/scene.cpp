@@ -348,16 +348,24 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   }
   int32_t blocked[kLanes];
   if (any_short) accel_->occluded(short_rays, nullptr, blocked);
-  // The rest through the filter, their queries built in place (the filter reads them during
-  // the query).
+  int32_t rest[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    visible[i] = short_rays.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
+    rest[i] = q.active[i] != 0 && visible[i] == 0 ? 1 : 0;
+  }
+  visible_filtered(q, rest, visible);
+}
+
+void Scene::visible_filtered(const ShadowPacket& q, const int32_t* lanes, int32_t* visible) const {
+  constexpr int kLanes = RayPacket::kLanes;
+  // The queries built in place (the filter reads them during the query).
   alignas(VisibilityQuery) unsigned char storage[kLanes][sizeof(VisibilityQuery)];
   RayPacket rays;
   HitFilter filter[kLanes];
   const HitFilter* filters[kLanes] = {};
   bool any_filtered = false;
   for (int i = 0; i < kLanes; ++i) {
-    visible[i] = short_rays.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
-    rays.active[i] = q.active[i] != 0 && visible[i] == 0 ? 1 : 0;
+    rays.active[i] = lanes[i] != 0 ? 1 : 0;
     if (rays.active[i] == 0) continue;
     const auto* query = new (storage[i])
         VisibilityQuery(*this, {q.o0x[i], q.o0y[i], q.o0z[i]}, {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
@@ -367,11 +375,14 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
     any_filtered = true;
   }
   if (!any_filtered) return;
+  int32_t blocked[kLanes];
   accel_->occluded(rays, filters, blocked);
   for (int i = 0; i < kLanes; ++i) {
     if (rays.active[i] != 0) visible[i] = blocked[i] == 0 ? 1 : 0;
   }
 }
+
+void Scene::occluded(const int32_t* active, RayHit16& packet) const { accel_->occluded(active, packet); }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
   const Vec3 o0 = shadow_origin(p0, n0, p1);

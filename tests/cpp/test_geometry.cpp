@@ -280,6 +280,46 @@ TEST_CASE("ray_packets_of_every_width_find_the_same") {
   }
 }
 
+TEST_CASE("in_place_packets_find_what_copied_packets_find") {
+  // RayHit16 in place (Embree's own layout on the 16-wide queries, copied on the narrower ones):
+  // the hits and the unfiltered occlusion of the copying queries; a lane Embree refuses (a
+  // negative tmax) counts as blocked and misses.
+  const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1, 1, 0, -1, 0, 1, -1};
+  const std::vector<uint32_t> t = {0, 1, 2, 3, 4, 5};
+  RayPacket rays;
+  alignas(64) int32_t active[RayPacket::kLanes];
+  for (int i = 0; i < RayPacket::kLanes; ++i) {
+    const float x = 0.05f * static_cast<float>(i);
+    rays.set(i, Ray{{i == 7 ? 3e19f : x, 0.1f, 1.f}, {0.f, 0.f, -1.f}, i % 3 == 0 ? 1.5f : 2.5f, i == 4 ? 1.2f : 0.f});
+    rays.active[i] = active[i] = i == 5 || i >= 12 ? 0 : -1;
+  }
+  const auto in_place = [&] {
+    RayHit16 packet;
+    for (int i = 0; i < RayPacket::kLanes; ++i) {
+      packet.ox[i] = rays.ox[i], packet.oy[i] = rays.oy[i], packet.oz[i] = rays.oz[i];
+      packet.dx[i] = rays.dx[i], packet.dy[i] = rays.dy[i], packet.dz[i] = rays.dz[i];
+      packet.tmin[i] = rays.tmin[i], packet.tmax[i] = rays.tmax[i];
+    }
+    return packet;
+  };
+  for (const int width : {16, 8, 1}) {
+    const EmbreeAccel accel(p, t, true, width);
+    HitPacket hits;
+    int32_t blocked[RayPacket::kLanes];
+    accel.intersect(rays, hits);
+    accel.occluded(rays, nullptr, blocked);
+    RayHit16 closest = in_place(), shadow = in_place();
+    accel.intersect(active, closest);
+    accel.occluded(active, shadow);
+    for (int i = 0; i < RayPacket::kLanes; ++i) {
+      CHECK(closest.prim[i] == hits.prim[i]);
+      if (hits.prim[i] != RayHit::kNoHit) CHECK((closest.tmax[i] == hits.t[i] && closest.u[i] == hits.u[i]));
+      CHECK((active[i] != 0 && shadow.tmax[i] < 0.f) == (blocked[i] != 0));
+    }
+    CHECK(blocked[7] == 1);
+  }
+}
+
 namespace {
 // The unit box seen from inside, a light quad (prims 12, 13) at y = 0.95 facing down, a small
 // horizontal occluder (prim 14) 0.02 below the light's middle, a tilted triangle (prim 15) by the
