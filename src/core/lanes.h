@@ -86,7 +86,10 @@ struct LanePcg32 {
   vu64 state, inc;
   vf next_float(vi active) {
     const vu64 old = state;
-    state = __builtin_convertvector(active, vi64) ? old * 6364136223846793005ull + inc : old;
+    // old * multiplier + inc where active, as old + (old * (multiplier - 1) + inc) masked: the same
+    // sum modulo 2^64, without a 64-bit select (which GCC 12 takes apart lane by lane).
+    const auto step = (vu64)__builtin_convertvector(active, vi64);
+    state = old + ((old * (6364136223846793005ull - 1u) + inc) & step);
     const vu xorshifted = __builtin_convertvector(((old >> 18u) ^ old) >> 27u, vu);
     const vu rot = __builtin_convertvector(old >> 59u, vu);
     const vu bits = (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));

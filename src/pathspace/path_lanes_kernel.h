@@ -186,11 +186,14 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
 }
 
 // The BSDFs of the lanes of kind kLaneOther, which the scalar code evaluates lane by lane: the
-// material's, or a textured material's at the hit's surface coordinates (extend_path's `bsdf`).
+// material's, or a textured material's at the hit's surface coordinates (extend_path's `bsdf`),
+// kept in `textured` (the lanes' own storage, which outlives the bounce: nothing to clear per bounce).
+using TexturedBsdfs = std::optional<Bsdf>[kLanes];
 struct ScalarBsdfs {
-  const Bsdf* of[kLanes] = {};
-  std::optional<Bsdf> textured[kLanes];
-  vi other{}, delta{};  // the lanes of kind kLaneOther; those whose every lobe is a Dirac delta
+  TexturedBsdfs& textured;
+  const Bsdf* of[kLanes];  // set on the `other` lanes only
+  vi other{}, delta{};     // the lanes of kind kLaneOther; those whose every lobe is a Dirac delta
+  explicit ScalarBsdfs(TexturedBsdfs& storage) : textured(storage) {}
 };
 inline void find_scalar_bsdfs(const PathLanesScene& ps, const LaneVertex& v, vi active, ScalarBsdfs& b) {
   b.other = active & (v.bsdf == kLaneOther);
@@ -452,6 +455,7 @@ struct LaneState {
   int32_t sample[kLanes];
   std::optional<Sampler> samplers[kLanes];
   LaneNumbers<Sampler> numbers;
+  TexturedBsdfs textured;  // ScalarBsdfs' storage
   LaneState() { std::fill(std::begin(sample), std::end(sample), -1); }
 };
 
@@ -513,7 +517,7 @@ void bounce(const PathLanesScene& ps, LaneState<Sampler>& st, TraceCounters& cou
   const int max_depth = ps.options->max_depth;
   if (max_depth >= 0) paths.active &= st.depth < max_depth;  // depth_allows(depth + 1)
   if (!any(paths.active)) return;
-  ScalarBsdfs b;
+  ScalarBsdfs b(st.textured);
   find_scalar_bsdfs(ps, v, paths.active, b);
   const LaneFrame frame = frame_from_normal(v.ns);
   const V3 wo_local = frame.to_local(wo);
