@@ -313,7 +313,8 @@ struct VisibilityQuery {
 // which the filter ignores. Then "nothing up to there" is the filtered answer, without Embree's
 // callback at the target's hit (the path tracer runs about 5 % faster on the Cornell and caustic
 // boxes). 0 where there is no such stop: a target touching another surface, or a segment too
-// long for half the clearance to stand clear of t's rounding (1e-5 of it).
+// long for half the clearance to stand clear of t's rounding (1e-5 of it). The path tracer's
+// lanes compute the same lane-wide (path_lanes_kernel.h, visible).
 float unfiltered_tmax(const Vec3& d, float target_clearance) {
   const float margin = 0.5f * target_clearance / length(d);
   return margin >= 1e-5f ? 1.f - std::min(margin, 0.5f) : 0.f;

@@ -177,14 +177,15 @@ class Scene {
     alignas(64) int32_t active[kLanes];
   };
   void visible(const ShadowPacket& queries, int32_t* visible) const;
-  // Its two steps, for lane code that takes the first itself: any surface on the short segment
-  // (the segment of the lanes where active[i] != 0, from o up to tmax along d: where one blocks
-  // it, or Embree refuses the ray, tmax[i] becomes negative; EmbreeAccel's RayHit16 in place),
-  // with the target's clearance giving tmax as in unfiltered_tmax (scene.cpp)...
+  // visible()'s two steps, for lane code that computes the first one's stop itself. First, the
+  // short segments traced without the filter: occluded() for the lanes where active[i] != 0,
+  // from o along d up to tmax, which unfiltered_tmax (scene.cpp) derives from the target's
+  // clearance (target_clearances(), per triangle); where a surface blocks a segment, or Embree
+  // refuses the ray, tmax[i] becomes negative (EmbreeAccel's RayHit16, in place). Then
+  // visible_filtered(): the filter alone for the lanes where lanes[i] != 0 (visible[i] of the
+  // others is left as it is).
   void occluded(const int32_t* active, RayHit16& packet) const;
   const float* target_clearances() const { return clearance_.data(); }
-  // ... and visible() through the filter alone for the lanes where lanes[i] != 0 (visible[i] of
-  // the others is left as it is).
   void visible_filtered(const ShadowPacket& queries, const int32_t* lanes, int32_t* visible) const;
   // The scale spawn_origin offsets at.
   float offset_scale() const { return offset_scale_; }

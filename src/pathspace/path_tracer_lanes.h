@@ -1,9 +1,10 @@
-// The path tracer in lanes: the camera paths of a batch of pixel samples (a tile's, up to 256)
-// advance sixteen at a time, their rays traced as Embree packets and their shading computed in
-// SIMD lanes (core/lanes.h: sixteen at a time with AVX-512, eight with AVX2, four with SSE2); a
-// lane whose path ends takes the batch's next sample. Compiled for each instruction set and
-// chosen at run time by what the CPU supports (AVX-512, else AVX2: see
-// choose_path_lanes). As in Mitsuba 3's vectorised variants, lanes are paths, not rays of one path.
+// The path tracer in lanes: the camera paths of a batch of pixel samples (up to 256, whole rows
+// of a tile at one or more sample indices: pixel_driver.h) advance together, their rays traced as
+// Embree packets and their shading computed in SIMD lanes (core/lanes.h: sixteen at a time with
+// AVX-512, eight with AVX2, four with SSE2); a lane whose path ends takes the batch's next sample.
+// Compiled for each instruction set and chosen at run time by what the CPU supports (AVX-512,
+// else AVX2: see choose_path_lanes). As in Mitsuba 3's vectorised variants, lanes are paths, not
+// rays of one path.
 //
 // Each lane computes exactly what the scalar path tracer (path_tracer.cpp) computes for its
 // sample: the same sampler (seed, pixel, sample index), the same numbers drawn in the same
