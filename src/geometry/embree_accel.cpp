@@ -410,7 +410,9 @@ void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
   if constexpr (same_layout()) {
     if (impl_->packet_width == 16) {
       rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p));
-      for (int i = 0; i < kLanes; ++i) p.prim[i] = valid[i] != 0 && p.geom[i] != RTC_INVALID_GEOMETRY_ID ? p.prim[i] : RayHit::kNoHit;
+      for (int i = 0; i < kLanes; ++i) {
+        if (valid[i] == 0 || p.geom[i] == RTC_INVALID_GEOMETRY_ID) p.prim[i] = RayHit::kNoHit;
+      }
       return;
     }
   }

@@ -204,8 +204,9 @@ void Scene::intersect(const int32_t* active, RayHit16& p) const {
   accel_->intersect(active, p);
   for (int i = 0; i < RayHit16::kLanes; ++i) {
     if (p.prim[i] == RayHit::kNoHit || p.tmax[i] != 0.f) continue;
-    const RayHit rh = past_start_plane(Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, tmax[i], p.tmin[i]},
-                                       RayHit{p.tmax[i], p.u[i], p.v[i], p.prim[i]});  // rare: as intersect() below
+    // Rare: as intersect() below.
+    const Ray ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, tmax[i], p.tmin[i]};
+    const RayHit rh = past_start_plane(ray, RayHit{p.tmax[i], p.u[i], p.v[i], p.prim[i]});
     p.tmax[i] = rh.t, p.u[i] = rh.u, p.v[i] = rh.v, p.prim[i] = rh.prim;
   }
 }

@@ -293,7 +293,8 @@ inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
   }
   alignas(64) int32_t chosen[kLanes] = {};
   for (int i = 0; i < kLanes; ++i) {
-    if (active[i] != 0) chosen[i] = static_cast<int32_t>(ps.scene->choose_emitter(u[i]).emitter - ps.scene->emitters().data());
+    if (active[i] == 0) continue;
+    chosen[i] = static_cast<int32_t>(ps.scene->choose_emitter(u[i]).emitter - ps.scene->emitters().data());
   }
   return load(chosen);
 }
