@@ -125,6 +125,18 @@ def test_lanes_render_the_scalar_image_bit_for_bit(
 
 
 @pytest.mark.skipif(not RUNNABLE, reason="this CPU runs no build of the lanes")
+def test_paths_of_no_segments_are_black_in_lanes_as_one_at_a_time() -> None:
+    # max_depth 0: no ray, no radiance, whichever runs (the lanes skip their batch loop).
+    scene = scenes.cornell_box((20, 18))
+    scalar = _render(scene, "off", max_depth=0)
+    assert not np.asarray(scalar).any() and scalar.stats["rays"] == 0
+    for isa in RUNNABLE:
+        _assert_same(scalar, _render(scene, isa, max_depth=0))
+    # Negative control: one segment already sees the light.
+    assert np.asarray(_render(scene, RUNNABLE[-1], max_depth=1)).any()
+
+
+@pytest.mark.skipif(not RUNNABLE, reason="this CPU runs no build of the lanes")
 def test_negative_control_a_reflectance_one_ulp_off_changes_the_image() -> None:
     scene = scenes.cornell_box((32, 16))
     nudged = scenes.cornell_box(

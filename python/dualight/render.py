@@ -335,12 +335,12 @@ def render(
         skips the shadow rays that ``"bsdf"`` would weight 0; BDPT still evaluates every
         connection.
     lanes:
-        ``"path"`` only: ``"auto"`` (the default) runs the paths of a tile's row (sixteen
-        pixels) together, their rays traced as Embree packets and their shading in SIMD lanes,
-        on AVX-512 or else AVX2 where the CPU has it and the scene allows it: triangles
-        (flat or with vertex normals) lit by area emitters without textures, no environment,
-        unguided. Diffuse, mirror and
-        smooth glass materials without textures run lane-wide; the others go lane by lane
+        ``"path"`` only: ``"auto"`` (the default) runs sixteen paths together (eight with
+        AVX2; a path that ends hands its lane to the next pixel sample), their rays traced as
+        Embree packets and their shading in SIMD lanes, on AVX-512 or else AVX2 where the CPU
+        has it and the scene allows it: triangles (flat or with vertex normals) lit by area
+        emitters without textures, no environment, unguided. Diffuse, mirror and smooth
+        glass materials without textures run lane-wide; the others go lane by lane
         through the scalar code, which ``"auto"`` does where they cover at most 10 % of the
         scene's area (more ran slower than one path at a time). Asked for by name, the lanes
         take them on any share. ``"off"`` runs one path at a time; ``"sse2"``,

@@ -336,23 +336,25 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
 
 void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   constexpr int kLanes = RayPacket::kLanes;
-  RayPacket short_rays;  // as visible() above: first without the filter, where a short stop exists
+  // As visible() above: first without the filter, where a short stop exists (the query the
+  // path tracer's lanes make, their stop computed lane-wide), then the filter for the rest.
+  RayHit16 segments{};
+  alignas(64) int32_t short_stop[kLanes] = {};
   bool any_short = false;
   for (int i = 0; i < kLanes; ++i) {
-    short_rays.active[i] = 0;
     if (q.active[i] == 0) continue;
     const Vec3 o0{q.o0x[i], q.o0y[i], q.o0z[i]}, d = Vec3{q.p1x[i], q.p1y[i], q.p1z[i]} - o0;
     const float tmax = unfiltered_tmax(d, clearance_[q.target[i]]);
-    if (!(tmax > 0.f)) continue;
-    short_rays.set(i, Ray{o0, d, tmax});
-    short_rays.active[i] = 1;
-    any_short = true;
+    short_stop[i] = tmax > 0.f ? -1 : 0;
+    segments.ox[i] = o0.x, segments.oy[i] = o0.y, segments.oz[i] = o0.z;
+    segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
+    segments.tmin[i] = 0.f, segments.tmax[i] = tmax;
+    any_short = any_short || short_stop[i] != 0;
   }
-  int32_t blocked[kLanes];
-  if (any_short) accel_->occluded(short_rays, nullptr, blocked);
+  if (any_short) occluded(short_stop, segments);
   int32_t rest[kLanes];
   for (int i = 0; i < kLanes; ++i) {
-    visible[i] = short_rays.active[i] != 0 && blocked[i] == 0 ? 1 : 0;
+    visible[i] = short_stop[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
     rest[i] = q.active[i] != 0 && visible[i] == 0 ? 1 : 0;
   }
   visible_filtered(q, rest, visible);

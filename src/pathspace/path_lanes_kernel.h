@@ -473,7 +473,6 @@ struct LaneBatch {
 // ray; a new path, extend_path's initial state). Returns whether any lane's path goes on.
 template <class Sampler>
 bool regenerate(const PathLanesScene& ps, LaneBatch& batch, LaneState<Sampler>& st, Color* values) {
-  const int max_depth = ps.options->max_depth;
   alignas(64) float o[3][kLanes], d[3][kLanes], tmin[kLanes], tmax[kLanes];
   store(o[0], st.rays.o.x), store(o[1], st.rays.o.y), store(o[2], st.rays.o.z);
   store(d[0], st.rays.d.x), store(d[1], st.rays.d.y), store(d[2], st.rays.d.z);
@@ -483,8 +482,6 @@ bool regenerate(const PathLanesScene& ps, LaneBatch& batch, LaneState<Sampler>& 
     if (st.paths.active[i] != 0) continue;
     if (st.sample[i] >= 0) values[st.sample[i]] = Color(st.paths.L.x[i], st.paths.L.y[i], st.paths.L.z[i]);
     st.sample[i] = -1;
-    // A path of no segments (max_depth 0) ends where it starts, with no radiance.
-    for (; batch.next < batch.n && max_depth == 0; ++batch.next) values[batch.next] = Color(0.f);
     if (batch.next == batch.n) continue;
     st.sample[i] = static_cast<int32_t>(batch.next);
     const Point2 position = start_sample(batch.seed, batch.film_width, batch.samples[batch.next++], st.samplers[i]);
@@ -531,6 +528,10 @@ void bounce(const PathLanesScene& ps, LaneState<Sampler>& st, TraceCounters& cou
 template <class Sampler>
 [[gnu::flatten]] void trace_paths(const PathLanesScene& ps, uint64_t seed, int film_width, const PixelSample* samples,
                                   size_t n, TraceCounters& counters, Color* values) {
+  if (ps.options->max_depth == 0) {  // paths of no segments end where they start, with no radiance
+    std::fill(values, values + n, Color(0.f));
+    return;
+  }
   LaneBatch batch{seed, film_width, samples, n, 0};
   LaneState<Sampler> st;
   while (regenerate(ps, batch, st, values)) bounce(ps, st, counters);
