@@ -381,7 +381,7 @@ RayPacket packet_rays(const int32_t* active, const RayHit16& p) {
 
 }  // namespace
 
-void EmbreeAccel::occluded(const int32_t* active, RayHit16& p) const {
+void EmbreeAccel::occluded(const int32_t* active, RayHit16& p, const HitFilter* const* filters) const {
   constexpr int kLanes = RayHit16::kLanes;
   alignas(64) int valid[kLanes];
   prepare_lanes(active, p, valid);
@@ -391,12 +391,13 @@ void EmbreeAccel::occluded(const int32_t* active, RayHit16& p) const {
         if (active[i] != 0 && valid[i] == 0) p.tmax[i] = -std::numeric_limits<float>::infinity();
       }
       FilterContext fc{};
-      rtc_occluded<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRay16*>(&p), fc, false);
+      fc.lane_filters = filters;
+      rtc_occluded<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRay16*>(&p), fc, filters != nullptr);
       return;
     }
   }
   int32_t blocked[kLanes];
-  occluded(packet_rays(active, p), nullptr, blocked);
+  occluded(packet_rays(active, p), filters, blocked);
   for (int i = 0; i < kLanes; ++i) {
     if (active[i] != 0 && blocked[i] != 0) p.tmax[i] = -std::numeric_limits<float>::infinity();
   }

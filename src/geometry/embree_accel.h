@@ -82,10 +82,10 @@ class EmbreeAccel {
   void intersect(const RayPacket& rays, HitPacket& hits) const;
   void occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const;
   // The same as intersect(RayPacket) in place, for the lanes where active[i] != 0; and as
-  // occluded(RayPacket) without filters: where lane i's ray is blocked, or Embree would not take
-  // it (counted as blocked), tmax[i] becomes negative.
+  // occluded(RayPacket): where lane i's ray is blocked, or Embree would not take it (counted as
+  // blocked), tmax[i] becomes negative.
   void intersect(const int32_t* active, RayHit16& packet) const;
-  void occluded(const int32_t* active, RayHit16& packet) const;
+  void occluded(const int32_t* active, RayHit16& packet, const HitFilter* const* filters = nullptr) const;
 
  private:
   struct Impl;

@@ -308,14 +308,15 @@ struct VisibilityQuery {
   }
 };
 
-// Where a shadow ray from o0 along d = p1 - o0 (VisibilityQuery's) may stop when traced
-// without the filter: short of the target by half the target's clearance (surface_clearance.h),
-// so the rest of the segment meets no surface but the target's own and those coplanar with it,
-// which the filter ignores. Then "nothing up to there" is the filtered answer, without Embree's
-// callback at the target's hit (the path tracer runs about 5 % faster on the Cornell and caustic
-// boxes). 0 where there is no such stop: a target touching another surface, or a segment too
-// long for half the clearance to stand clear of t's rounding (1e-5 of it). The path tracer's
-// lanes compute the same lane-wide (path_lanes_kernel.h, visible).
+// Where a shadow ray from o0 along d = p1 - o0 (VisibilityQuery's) may stop: short of the
+// target by half the target's clearance (surface_clearance.h), so the rest of the segment meets
+// no surface but the target's own and those coplanar with it, which the filter ignores. Up to
+// there, the filtered answer is the answer to t = 1, and an unblocked ray hits nothing, so
+// Embree calls no filter at the target (the path tracer runs about 5 % faster on the Cornell and
+// caustic boxes); a blocker goes through the filter in the same query. 0 where there is no such
+// stop: a target touching another surface, or a segment too long for half the clearance to
+// stand clear of t's rounding (1e-5 of it). The path tracer's lanes compute the same lane-wide
+// (path_lanes_kernel.h, visible).
 float unfiltered_tmax(const Vec3& d, float target_clearance) {
   const float margin = 0.5f * target_clearance / length(d);
   return margin >= 1e-5f ? 1.f - std::min(margin, 0.5f) : 0.f;
@@ -324,69 +325,61 @@ float unfiltered_tmax(const Vec3& d, float target_clearance) {
 }  // namespace
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
-  const Vec3 o0 = shadow_origin(p0, n0, p1), d = p1 - o0;
-  const float tmax = unfiltered_tmax(d, clearance_[target]);
-  if (tmax > 0.f && !accel_->occluded(Ray{o0, d, tmax})) return true;
-  // Blocked short of the target, or no short stop: the filter decides (a blocker may be a
-  // surface the segment only touches at its ends).
-  const VisibilityQuery query(*this, o0, p1, target, origin);
+  const VisibilityQuery query(*this, shadow_origin(p0, n0, p1), p1, target, origin);
   const HitFilter filter{&VisibilityQuery::ignore, &query};
-  return !accel_->occluded(query.ray(), &filter);
+  Ray ray = query.ray();
+  const float stop = unfiltered_tmax(ray.d, clearance_[target]);
+  if (stop > 0.f) ray.tmax = stop;
+  return !accel_->occluded(ray, &filter);
 }
 
 void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   constexpr int kLanes = RayPacket::kLanes;
-  // As visible() above: first without the filter, where a short stop exists (the query the
-  // path tracer's lanes make, their stop computed lane-wide), then the filter for the rest.
+  // The segments as the path tracer's lanes build them (path_lanes_kernel.h, visible).
   RayHit16 segments{};
-  alignas(64) int32_t short_stop[kLanes] = {};
-  bool any_short = false;
   for (int i = 0; i < kLanes; ++i) {
     if (q.active[i] == 0) continue;
     const Vec3 o0{q.o0x[i], q.o0y[i], q.o0z[i]}, d = Vec3{q.p1x[i], q.p1y[i], q.p1z[i]} - o0;
-    const float tmax = unfiltered_tmax(d, clearance_[q.target[i]]);
-    short_stop[i] = tmax > 0.f ? -1 : 0;
+    const float stop = unfiltered_tmax(d, clearance_[q.target[i]]);
     segments.ox[i] = o0.x, segments.oy[i] = o0.y, segments.oz[i] = o0.z;
     segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
-    segments.tmin[i] = 0.f, segments.tmax[i] = tmax;
-    any_short = any_short || short_stop[i] != 0;
+    segments.tmin[i] = 0.f, segments.tmax[i] = stop > 0.f ? stop : 1.f;
   }
-  if (any_short) occluded(short_stop, segments);
-  int32_t rest[kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    visible[i] = short_stop[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
-    rest[i] = q.active[i] != 0 && visible[i] == 0 ? 1 : 0;
-  }
-  visible_filtered(q, rest, visible);
+  occluded(q.active, segments, q);
+  for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
 }
 
-void Scene::visible_filtered(const ShadowPacket& q, const int32_t* lanes, int32_t* visible) const {
-  constexpr int kLanes = RayPacket::kLanes;
-  // The queries built in place (the filter reads them during the query).
-  alignas(VisibilityQuery) unsigned char storage[kLanes][sizeof(VisibilityQuery)];
-  RayPacket rays;
+namespace {
+
+// Lane i of a ShadowPacket as visible()'s filter: its VisibilityQuery, built only at a hit (a
+// segment with a short stop hits nothing unless it is blocked).
+struct LaneVisibility {
+  const Scene* scene;
+  const Scene::ShadowPacket* ends;
+  int lane;
+
+  static bool ignore(const void* user, uint32_t prim, float t) {
+    const auto& [scene, q, i] = *static_cast<const LaneVisibility*>(user);
+    const VisibilityQuery query(*scene, {q->o0x[i], q->o0y[i], q->o0z[i]}, {q->p1x[i], q->p1y[i], q->p1z[i]},
+                                q->target[i], q->origin[i]);
+    return VisibilityQuery::ignore(&query, prim, t);
+  }
+};
+
+}  // namespace
+
+void Scene::occluded(const int32_t* active, RayHit16& packet, const ShadowPacket& ends) const {
+  constexpr int kLanes = RayHit16::kLanes;
+  LaneVisibility lanes[kLanes];
   HitFilter filter[kLanes];
-  const HitFilter* filters[kLanes] = {};
-  bool any_filtered = false;
+  const HitFilter* filters[kLanes];
   for (int i = 0; i < kLanes; ++i) {
-    rays.active[i] = lanes[i] != 0 ? 1 : 0;
-    if (rays.active[i] == 0) continue;
-    const auto* query = new (storage[i])
-        VisibilityQuery(*this, {q.o0x[i], q.o0y[i], q.o0z[i]}, {q.p1x[i], q.p1y[i], q.p1z[i]}, q.target[i], q.origin[i]);
-    rays.set(i, query->ray());
-    filter[i] = HitFilter{&VisibilityQuery::ignore, query};
+    lanes[i] = LaneVisibility{this, &ends, i};
+    filter[i] = HitFilter{&LaneVisibility::ignore, &lanes[i]};
     filters[i] = &filter[i];
-    any_filtered = true;
   }
-  if (!any_filtered) return;
-  int32_t blocked[kLanes];
-  accel_->occluded(rays, filters, blocked);
-  for (int i = 0; i < kLanes; ++i) {
-    if (rays.active[i] != 0) visible[i] = blocked[i] == 0 ? 1 : 0;
-  }
+  accel_->occluded(active, packet, filters);
 }
-
-void Scene::occluded(const int32_t* active, RayHit16& packet) const { accel_->occluded(active, packet); }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {
   const Vec3 o0 = shadow_origin(p0, n0, p1);

@@ -154,8 +154,8 @@ class Scene {
   // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to
   // p1 it stands, so walls that meet the target's surface do not leak. `origin` is p0's own
   // triangle where it has one: it settles a p0 on the edge where its surface meets another.
-  // Targets clear of other surfaces (emitters, surface_clearance.h) are first traced without
-  // the filter, short of p1: the same answer, faster.
+  // Towards targets clear of other surfaces (emitters, surface_clearance.h) the ray stops short
+  // of p1, so an unblocked ray meets no surface and calls no filter: the same answer, faster.
   static constexpr uint32_t kNoTriangle = 0xffffffffu;
   bool visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin = kNoTriangle) const;
   // True when nothing lies between p0 (on a surface with normal n0) and p1, a point in free
@@ -177,16 +177,14 @@ class Scene {
     alignas(64) int32_t active[kLanes];
   };
   void visible(const ShadowPacket& queries, int32_t* visible) const;
-  // visible()'s two steps, for lane code that computes the first one's stop itself. First, the
-  // short segments traced without the filter: occluded() for the lanes where active[i] != 0,
-  // from o along d up to tmax, which unfiltered_tmax (scene.cpp) derives from the target's
-  // clearance (target_clearances(), per triangle); where a surface blocks a segment, or Embree
-  // refuses the ray, tmax[i] becomes negative (EmbreeAccel's RayHit16, in place). Then
-  // visible_filtered(): the filter alone for the lanes where lanes[i] != 0 (visible[i] of the
-  // others is left as it is).
-  void occluded(const int32_t* active, RayHit16& packet) const;
+  // visible() of packets, for lane code that computes the segments itself: lane i of `packet`
+  // (where active[i] != 0) holds the ray from o0 along p1 - o0 (of `ends`) up to tmax, the short
+  // stop unfiltered_tmax (scene.cpp) derives from the target's clearance (target_clearances(),
+  // per triangle), or 1 where it gives none; every hit on the way goes through visible()'s
+  // filter. Where the segment is blocked, or Embree refuses the ray, tmax[i] becomes negative
+  // (EmbreeAccel's RayHit16, in place).
+  void occluded(const int32_t* active, RayHit16& packet, const ShadowPacket& ends) const;
   const float* target_clearances() const { return clearance_.data(); }
-  void visible_filtered(const ShadowPacket& queries, const int32_t* lanes, int32_t* visible) const;
   // The scale spawn_origin offsets at.
   float offset_scale() const { return offset_scale_; }
 

@@ -227,42 +227,33 @@ inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3
 }
 
 // Scene::visible for the lanes in `shadow`, or no ray where connections are unoccluded
-// (shadow_ray_visible): first the short segment without the filter, lane-wide (its tmax as
-// unfiltered_tmax, scene.cpp, computes it), then the filter for the rest.
+// (shadow_ray_visible): each segment up to its short stop (unfiltered_tmax, scene.cpp, computed
+// lane-wide), or to the target where it has none, through the filter (Scene::occluded).
 inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi target, vi shadow,
                   TraceCounters& counters) {
   if (counters.unoccluded) {
     counters.skipped_shadow_rays += count(shadow);
     return shadow;
   }
+  if (!any(shadow)) return shadow;
   counters.rays += count(shadow);
   // Scene::shadow_origin
   const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
   const V3 d = y - o0;
   const vf margin = 0.5f * gather(ps.scene->target_clearances(), select(shadow, target, splat_i(0))) / sqrt(dot(d, d));
-  const vf tmax = select(margin >= 1e-5f, 1.f - min(margin, splat(0.5f)), splat(0.f));
-  const vi short_stop = shadow & (tmax > 0.f);
-  vi seen = splat_i(0);
-  if (any(short_stop)) {
-    RayHit16 packet;
-    if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
-    alignas(64) int32_t active[RayHit16::kLanes] = {};
-    store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
-    store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
-    store(packet.tmin, splat(0.f)), store(packet.tmax, tmax), store(active, short_stop);
-    ps.scene->occluded(active, packet);
-    seen = short_stop & (load(packet.tmax) >= 0.f);
-  }
-  const vi rest = shadow & ~seen;
-  if (!any(rest)) return seen;
+  const vf tmax = select(margin >= 1e-5f, 1.f - min(margin, splat(0.5f)), splat(1.f));
+  RayHit16 packet;
+  if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
+  alignas(64) int32_t active[RayHit16::kLanes] = {};
+  store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
+  store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
+  store(packet.tmin, splat(0.f)), store(packet.tmax, tmax), store(active, shadow);
   Scene::ShadowPacket q;
   store(q.o0x, o0.x), store(q.o0y, o0.y), store(q.o0z, o0.z);
   store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
   store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
-  alignas(64) int32_t lanes[RayPacket::kLanes] = {}, filtered[RayPacket::kLanes] = {};
-  store(lanes, rest);
-  ps.scene->visible_filtered(q, lanes, filtered);
-  return seen | (load(filtered) != 0);
+  ps.scene->occluded(active, packet, q);
+  return shadow & (load(packet.tmax) >= 0.f);
 }
 
 // eval_f_world and pdf_w_world of the lanes in `lanes` (of kind kLaneOther), by the scalar code,
