@@ -87,6 +87,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   eye_clearance_ = 1e-6f * extent;
 
   normal_.resize(n_triangles);
+  plane_.resize(n_triangles);
   area_.resize(n_triangles);
   emitter_of_prim_.assign(n_triangles, kNoEmitter);
   for (uint32_t prim = 0; prim < n_triangles; ++prim) {
@@ -98,6 +99,7 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
       throw std::invalid_argument("triangle " + std::to_string(prim) + " has zero area");
     }
     normal_[prim] = normal;
+    plane_[prim] = {normal, vertex(prim, 0)};
     area_[prim] = 0.5f * len;
     if (material(prim).emits()) {
       emitter_of_prim_[prim] = static_cast<uint32_t>(emitters_.size());
@@ -300,11 +302,12 @@ struct VisibilityQuery {
   static bool ignore(const void* user, uint32_t prim, float t) {
     const auto* q = static_cast<const VisibilityQuery*>(user);
     if (prim == q->target || q->segment_stays_on_one_side(prim)) return true;
-    if (std::abs(dot(q->target_normal, q->scene->normal(prim))) < 1.f - 1e-5f) return false;
+    const Scene::TrianglePlane& plane = q->scene->plane(prim);
+    if (std::abs(dot(q->target_normal, plane.n)) < 1.f - 1e-5f) return false;
     const Vec3 hit = q->origin + q->direction * t;
     const float tolerance = q->tolerance();
     return std::abs(dot(q->target_normal, hit - q->target_point)) <= tolerance &&
-           std::abs(dot(q->target_normal, q->scene->vertex(prim, 0) - q->target_point)) <= tolerance;
+           std::abs(dot(q->target_normal, plane.p0 - q->target_point)) <= tolerance;
   }
 };
 

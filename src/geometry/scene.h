@@ -135,8 +135,17 @@ class Scene {
     ray.tmin = eye_clearance_;
     return ray;
   }
+  // Triangle prim's unit normal and first vertex together (one cache line: the visibility
+  // filter reads them at every hit, on triangles the ray tracer has just found, not the shader).
+  struct TrianglePlane {
+    Vec3 n, p0;
+  };
+  const TrianglePlane& plane(uint32_t prim) const { return plane_[prim]; }
   // Signed distance of p from the plane of triangle `prim` (along its unit normal).
-  float plane_offset(uint32_t prim, const Vec3& p) const { return dot(normal_[prim], p - vertex(prim, 0)); }
+  float plane_offset(uint32_t prim, const Vec3& p) const {
+    const TrianglePlane& plane = plane_[prim];
+    return dot(plane.n, p - plane.p0);
+  }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
   // The sphere around the geometry that emitters at infinity use (core/bounding_sphere.h).
@@ -204,6 +213,7 @@ class Scene {
   std::vector<uint32_t> material_of_;
   std::vector<Material> materials_;
   std::vector<Vec3> normal_;
+  std::vector<TrianglePlane> plane_;  // normal_ and each triangle's first vertex
   std::vector<Vec3> vertex_normal_;  // unit, per vertex; empty when every triangle is flat
   std::vector<uint8_t> smooth_;      // per triangle: 1 = interpolate vertex_normal_
   std::vector<float> uv_;            // (u, v) per vertex; empty when no mesh has any
