@@ -320,7 +320,7 @@ struct VisibilityQuery {
 // stop: a target touching another surface, or a segment too long for half the clearance to
 // stand clear of t's rounding (1e-5 of it). The path tracer's lanes compute the same lane-wide
 // (path_lanes_kernel.h, visible).
-float unfiltered_tmax(const Vec3& d, float target_clearance) {
+float short_stop(const Vec3& d, float target_clearance) {
   const float margin = 0.5f * target_clearance / length(d);
   return margin >= 1e-5f ? 1.f - std::min(margin, 0.5f) : 0.f;
 }
@@ -331,7 +331,7 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
   const VisibilityQuery query(*this, shadow_origin(p0, n0, p1), p1, target, origin);
   const HitFilter filter{&VisibilityQuery::ignore, &query};
   Ray ray = query.ray();
-  const float stop = unfiltered_tmax(ray.d, clearance_[target]);
+  const float stop = short_stop(ray.d, clearance_[target]);
   if (stop > 0.f) ray.tmax = stop;
   return !accel_->occluded(ray, &filter);
 }
@@ -343,7 +343,7 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
   for (int i = 0; i < kLanes; ++i) {
     if (q.active[i] == 0) continue;
     const Vec3 o0{q.o0x[i], q.o0y[i], q.o0z[i]}, d = Vec3{q.p1x[i], q.p1y[i], q.p1z[i]} - o0;
-    const float stop = unfiltered_tmax(d, clearance_[q.target[i]]);
+    const float stop = short_stop(d, clearance_[q.target[i]]);
     segments.ox[i] = o0.x, segments.oy[i] = o0.y, segments.oz[i] = o0.z;
     segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
     segments.tmin[i] = 0.f, segments.tmax[i] = stop > 0.f ? stop : 1.f;

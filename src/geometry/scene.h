@@ -135,8 +135,8 @@ class Scene {
     ray.tmin = eye_clearance_;
     return ray;
   }
-  // Triangle prim's unit normal and first vertex together (one cache line: the visibility
-  // filter reads them at every hit, on triangles the ray tracer has just found, not the shader).
+  // Triangle prim's unit normal and first vertex in one record (the visibility filter reads
+  // both at every hit, on triangles only Embree has touched: one cache miss instead of three).
   struct TrianglePlane {
     Vec3 n, p0;
   };
@@ -187,10 +187,10 @@ class Scene {
   };
   void visible(const ShadowPacket& queries, int32_t* visible) const;
   // visible() of packets, for lane code that computes the segments itself: lane i of `packet`
-  // (where active[i] != 0) holds the ray from o0 along p1 - o0 (of `ends`) up to tmax, the short
-  // stop unfiltered_tmax (scene.cpp) derives from the target's clearance (target_clearances(),
-  // per triangle), or 1 where it gives none; every hit on the way goes through visible()'s
-  // filter. Where the segment is blocked, or Embree refuses the ray, tmax[i] becomes negative
+  // (where active[i] != 0) holds the ray from o0 along p1 - o0 (of `ends`) up to tmax: the stop
+  // short of the target that short_stop (scene.cpp) derives from its clearance
+  // (target_clearances(), per triangle), or 1 where it gives none; every hit on the way goes
+  // through visible()'s filter. Where the segment is blocked, or Embree refuses the ray, tmax[i] becomes negative
   // (EmbreeAccel's RayHit16, in place).
   void occluded(const int32_t* active, RayHit16& packet, const ShadowPacket& ends) const;
   const float* target_clearances() const { return clearance_.data(); }

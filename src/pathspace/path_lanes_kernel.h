@@ -227,7 +227,7 @@ inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3
 }
 
 // Scene::visible for the lanes in `shadow`, or no ray where connections are unoccluded
-// (shadow_ray_visible): each segment up to its short stop (unfiltered_tmax, scene.cpp, computed
+// (shadow_ray_visible): each segment up to its short stop (short_stop, scene.cpp, computed
 // lane-wide), or to the target where it has none, through the filter (Scene::occluded).
 inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi target, vi shadow,
                   TraceCounters& counters) {
