@@ -129,7 +129,7 @@ HierarchicalSolver::Link HierarchicalSolver::make_link(uint32_t receiver, uint32
     kernel[k] = rule[k].weight * point_triangle_form_factor(points[k], r.normal, s.v);
     F += kernel[k];
   }
-  Link link{receiver, source, static_cast<float>(F), static_cast<float>(F), static_cast<float>(F), {}};
+  Link link{receiver, source, static_cast<float>(F), static_cast<float>(F), static_cast<float>(F), {}, {}};
   for (int k = 0; k < 7; ++k) link.F_point[k] = static_cast<float>(kernel[k] / rule[k].weight);
   if (!(F > 0.0) || options_.shadow_rays == 0) return link;
   if (options_.skip_unneeded && scene_.features().convex_enclosure) {
@@ -448,8 +448,8 @@ void HierarchicalSolver::refine_links(std::vector<Refinement> to_refine, Hierarc
     if (control != nullptr && control->cancelled()) return;
     for (size_t k = chunk * kChunk; k < std::min(pending.size(), (chunk + 1) * kChunk); ++k) {
       const auto [r, s] = pending[k];
-      created[k] =
-          facing(elements_[r], elements_[s]) ? make_link(r, s, local, local_skipped) : Link{r, s, 0.f, 0.f, 0.f, {}};
+      created[k] = facing(elements_[r], elements_[s]) ? make_link(r, s, local, local_skipped)
+                                                      : Link{r, s, 0.f, 0.f, 0.f, {}, {}};
     }
     rays.fetch_add(local);
     skipped.fetch_add(local_skipped);
