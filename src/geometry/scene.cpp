@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <new>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -348,7 +347,7 @@ void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
     segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
     segments.tmin[i] = 0.f, segments.tmax[i] = stop > 0.f ? stop : 1.f;
   }
-  occluded(q.active, segments, q);
+  occluded(segments, q);
   for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
 }
 
@@ -371,7 +370,7 @@ struct LaneVisibility {
 
 }  // namespace
 
-void Scene::occluded(const int32_t* active, RayHit16& packet, const ShadowPacket& ends) const {
+void Scene::occluded(RayHit16& packet, const ShadowPacket& ends) const {
   constexpr int kLanes = RayHit16::kLanes;
   LaneVisibility lanes[kLanes];
   HitFilter filter[kLanes];
@@ -381,7 +380,7 @@ void Scene::occluded(const int32_t* active, RayHit16& packet, const ShadowPacket
     filter[i] = HitFilter{&LaneVisibility::ignore, &lanes[i]};
     filters[i] = &filter[i];
   }
-  accel_->occluded(active, packet, filters);
+  accel_->occluded(ends.active, packet, filters);
 }
 
 bool Scene::visible_point(const Vec3& p0, const Vec3& n0, const Vec3& p1) const {

@@ -187,12 +187,12 @@ class Scene {
   };
   void visible(const ShadowPacket& queries, int32_t* visible) const;
   // visible() of packets, for lane code that computes the segments itself: lane i of `packet`
-  // (where active[i] != 0) holds the ray from o0 along p1 - o0 (of `ends`) up to tmax: the stop
-  // short of the target that short_stop (scene.cpp) derives from its clearance
+  // (where ends.active[i] != 0) holds the ray from o0 along p1 - o0 (of `ends`) up to tmax: the
+  // stop short of the target that short_stop (scene.cpp) derives from its clearance
   // (target_clearances(), per triangle), or 1 where it gives none; every hit on the way goes
-  // through visible()'s filter. Where the segment is blocked, or Embree refuses the ray, tmax[i] becomes negative
-  // (EmbreeAccel's RayHit16, in place).
-  void occluded(const int32_t* active, RayHit16& packet, const ShadowPacket& ends) const;
+  // through visible()'s filter. Where the segment is blocked, or Embree refuses the ray, tmax[i]
+  // becomes negative (EmbreeAccel's RayHit16, in place).
+  void occluded(RayHit16& packet, const ShadowPacket& ends) const;
   const float* target_clearances() const { return clearance_.data(); }
   // The scale spawn_origin offsets at.
   float offset_scale() const { return offset_scale_; }

@@ -243,16 +243,19 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
   const vf margin = 0.5f * gather(ps.scene->target_clearances(), select(shadow, target, splat_i(0))) / sqrt(dot(d, d));
   const vf tmax = select(margin >= 1e-5f, 1.f - min(margin, splat(0.5f)), splat(1.f));
   RayHit16 packet;
-  if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
-  alignas(64) int32_t active[RayHit16::kLanes] = {};
+  Scene::ShadowPacket q;
+  if constexpr (kLanes < RayHit16::kLanes) {
+    packet = RayHit16{};
+    std::fill(std::begin(q.active), std::end(q.active), 0);
+  }
   store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
   store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
-  store(packet.tmin, splat(0.f)), store(packet.tmax, tmax), store(active, shadow);
-  Scene::ShadowPacket q;
+  store(packet.tmin, splat(0.f)), store(packet.tmax, tmax);
   store(q.o0x, o0.x), store(q.o0y, o0.y), store(q.o0z, o0.z);
   store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
   store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
-  ps.scene->occluded(active, packet, q);
+  store(q.active, shadow);
+  ps.scene->occluded(packet, q);
   return shadow & (load(packet.tmax) >= 0.f);
 }
 
