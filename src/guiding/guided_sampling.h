@@ -61,7 +61,7 @@ inline bool sample_guided(const Bsdf& b, const Frame& frame, const VertexGuide& 
     float pdf_guide;
     bs.wi = frame.to_local(g.directions->sample(u, &pdf_guide));
     bs.delta = false;
-    bs.eta = 1.f;  // unknown here: a guided refraction's roulette keeps its 1 / eta^2 (variance only)
+    bs.eta = refraction_eta(b, wo, bs.wi);  // Russian roulette undoes a refraction's 1 / eta^2
     f_cos = eval_f(b, wo, bs.wi, m) * std::abs(bs.wi.z);
     pdf_bsdf = pdf_w(b, wo, bs.wi, m);
     pdf = alpha * pdf_bsdf + (1.f - alpha) * pdf_guide;

@@ -89,6 +89,17 @@ inline bool delta_direction(const Bsdf& b, const Vec3& wo, bool refraction, Vec3
 inline Color diffuse_reflectance(const Bsdf& b) {
   return std::visit([](const auto& x) { return diffuse_reflectance(x); }, b);
 }
+// BsdfSample::eta of local directions (wo, wi): the IOR on wi's side over wo's where the BSDF
+// refracts between them, else 1. Members that bend light across their surface say so with their
+// own refraction_eta; the rest (reflectors, and the thin sheet, whose light leaves in the medium
+// it came from) take this one.
+template <class Member>
+float refraction_eta(const Member&, const Vec3&, const Vec3&) {
+  return 1.f;
+}
+inline float refraction_eta(const Bsdf& b, const Vec3& wo, const Vec3& wi) {
+  return std::visit([&](const auto& x) { return refraction_eta(x, wo, wi); }, b);
+}
 // True when every lobe is a Dirac delta: connections to this vertex carry nothing.
 inline bool is_delta(const Bsdf& b) { return is_delta(flags(b)); }
 

@@ -21,6 +21,11 @@ inline Color diffuse_reflectance(const Dielectric&) { return Color(0.f); }
 inline Color eval_f(const Dielectric&, const Vec3&, const Vec3&, TransportMode) { return Color(0.f); }
 inline float pdf_w(const Dielectric&, const Vec3&, const Vec3&, TransportMode) { return 0.f; }
 
+// The IOR on wi's side over the IOR on wo's side (BsdfSample::eta of the pair): 1 for a reflection.
+inline float refraction_eta(const Dielectric& b, const Vec3& wo, const Vec3& wi) {
+  return same_hemisphere(wo, wi) ? 1.f : (wo.z >= 0.f ? b.eta : 1.f / b.eta);
+}
+
 // Snell's law: the refracted direction of wo, on the other side of the interface.
 inline Vec3 refract_local(const Vec3& wo, const Fresnel& F) {
   const float inv = 1.f / F.eta_ratio;

@@ -29,6 +29,11 @@ constexpr BsdfFlags flags(const RoughDielectric&) {
 }
 inline Color diffuse_reflectance(const RoughDielectric&) { return Color(0.f); }
 
+// The IOR on wi's side over the IOR on wo's side (BsdfSample::eta of the pair): 1 for a reflection.
+inline float refraction_eta(const RoughDielectric& b, const Vec3& wo, const Vec3& wi) {
+  return wo.z * wi.z > 0.f ? 1.f : (wo.z > 0.f ? b.eta : 1.f / b.eta);
+}
+
 namespace rough_dielectric_detail {
 
 // The probability of sampling the reflection lobe from wo.
@@ -46,7 +51,7 @@ struct HalfVector {
 inline bool half_vector(const RoughDielectric& b, const Vec3& wo, const Vec3& wi, HalfVector& h) {
   if (wo.z == 0.f || wi.z == 0.f) return false;
   h.reflect = wo.z * wi.z > 0.f;
-  h.eta = h.reflect ? 1.f : (wo.z > 0.f ? b.eta : 1.f / b.eta);
+  h.eta = refraction_eta(b, wo, wi);
   const Vec3 m = wo + wi * h.eta;
   const float len = length(m);
   if (!(len > 0.f)) return false;

@@ -1,7 +1,8 @@
 // The SD-tree guide (guiding/): the quadtree's density integrates to one and is the density of
 // its samples; a tree is the same whatever order its records come in; the BSDF fraction is
 // learnt only from enough records; adjoint-driven roulette keeps the expectation; Russian roulette
-// keeps the paths the guide sent where it learnt light comes from; the trial after
+// keeps the paths the guide sent where it learnt light comes from, and a guided refraction
+// reports its eta to the roulette; the trial after
 // training picks the more efficient of a guided and an unguided pass, unless they disagree, and
 // runs during the training before the iteration predicted to be its last.
 #include <algorithm>
@@ -214,6 +215,45 @@ TEST_CASE("russian_roulette_keeps_the_paths_the_guide_sent") {
   CHECK(guided_own < 1.2 * plain_own);              // the control: on its own throughput it does not
   MESSAGE("in the cone and surviving: guided " << guided_bsdf << " (on its own throughput " << guided_own
                                                 << "), unguided " << plain_bsdf);
+}
+
+// Frosted glass (GGX 0.3, IOR 1.5) guided towards a lobe across its surface: a direction the
+// guide picks through the glass reports the refraction's eta, as one BSDF sampling picks does, so
+// the camera path's roulette undoes its 1 / eta^2 (russian_roulette.h) whichever strategy sampled
+// it. From above the ratio is 1.5, from below 1 / 1.5; reflections report 1.
+TEST_CASE("a_guided_refraction_reports_its_eta") {
+  const Bsdf glass = RoughDielectric{Microfacet{MicrofacetType::GGX, 0.3f, 0.3f}, 1.5f};
+  const Frame frame = Frame::from_normal(Vec3(0.f, 0.f, 1.f));
+  for (const float side : {1.f, -1.f}) {
+    GuideRecords records = lobe_records(20000, Vec3(0.f, 0.f, -side), 9);  // across the surface
+    sort_by_square_code(records.data(), records.data() + records.size());
+    const DirectionalQuadtree quadtree(records.data(), records.data() + records.size(), 0.01f, 16);
+    const VertexGuide guide{&quadtree, 0.5f};
+    const Vec3 wo = normalize(Vec3(0.3f, 0.f, side));
+    const float through = side > 0.f ? 1.5f : 1.f / 1.5f;
+    Pcg32 rng(3, 5);
+    int guided_through = 0, bsdf_through = 0, wrong = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const bool by_guide = k % 2 == 0;  // u_select past bsdf_fraction picks the guide
+      BsdfSample bs;
+      float ratio;
+      const float u_select = by_guide ? 0.75f : 0.25f;
+      if (!sample_guided(glass, frame, guide, wo, u_select, {rng.next_float(), rng.next_float()},
+                         TransportMode::Radiance, bs, ratio)) {
+        continue;
+      }
+      const bool refracted = bs.wi.z * wo.z < 0.f;
+      if (refracted) ++(by_guide ? guided_through : bsdf_through);
+      if (bs.eta != (refracted ? through : 1.f) || bs.eta != refraction_eta(glass, wo, bs.wi)) ++wrong;
+    }
+    CHECK(wrong == 0);
+    CHECK(guided_through > 1000);  // the guide did send paths through the glass
+    CHECK(bsdf_through > 1000);
+  }
+  // Members that do not bend light report 1 on either side.
+  CHECK(refraction_eta(Bsdf{Lambertian{Color(0.5f)}}, Vec3(0.f, 0.f, 1.f), Vec3(0.f, 0.f, -1.f)) == 1.f);
+  CHECK(refraction_eta(Bsdf{ThinDielectric{1.5f}}, Vec3(0.f, 0.f, 1.f), Vec3(0.f, 0.f, -1.f)) == 1.f);
+  CHECK(refraction_eta(Bsdf{Dielectric{1.5f}}, Vec3(0.f, 0.f, 1.f), Vec3(0.f, 0.f, -1.f)) == 1.5f);
 }
 
 // A pass of a synthetic estimator: every pixel's samples are 1 + sigma * (a standard normal), and
