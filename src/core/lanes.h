@@ -97,6 +97,79 @@ struct LanePcg32 {
   }
 };
 
+// SobolSampler (core/sampler.h), one per lane, stepped together: lane i yields what its own
+// sampler would, where `active` (the others keep their dimension). The integer steps of the
+// scalar sampler, lane-wide: mix64 (core/rng.h), reverse_bits, laine_karras_permutation and
+// sobol_dimension1 (its byte tables gathered).
+struct LaneSobol {
+  vu64 pixel_seed{};
+  vu reversed_index{}, dimension{};
+
+  static vu64 mix64(vu64 z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  static vu reverse_bits(vu x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+  }
+  static vu laine_karras_permutation(vu x, vu seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+  }
+  static vu table(int byte, vu index) {
+    const auto* base = reinterpret_cast<const int32_t*>(sobol_detail::kDimension1.by_byte[byte]);
+#if DUALIGHT_LANES_BITS == 512
+    return (vu)_mm512_i32gather_epi32((__m512i)index, base, 4);
+#elif DUALIGHT_LANES_BITS == 256
+    return (vu)_mm256_i32gather_epi32(base, (__m256i)index, 4);
+#else
+    vu r;
+    for (int k = 0; k < kLanes; ++k) r[k] = static_cast<uint32_t>(base[index[k]]);
+    return r;
+#endif
+  }
+  static vu sobol_dimension1(vu index) {
+    return table(0, index & 0xffu) ^ table(1, (index >> 8) & 0xffu) ^ table(2, (index >> 16) & 0xffu) ^
+           table(3, index >> 24);
+  }
+  static vf to_unit_float(vu x) { return __builtin_convertvector((vi)(x >> 8), vf) * 0x1p-24f; }
+
+  // The next dimension's seeds where active: shuffle, x and (second) the mix for y.
+  void next_seeds(vi active, vu& shuffle, vu& x, vu64& a) {
+    dimension -= (vu)active;  // + 1 where active (-1)
+    a = mix64(pixel_seed + 0x9e3779b97f4a7c15ull * __builtin_convertvector(dimension, vu64));
+    shuffle = __builtin_convertvector(a, vu);
+    x = __builtin_convertvector(a >> 32, vu);
+  }
+  vu shuffled_index(vu seed) const { return reverse_bits(laine_karras_permutation(reversed_index, seed)); }
+  vf next_1d(vi active) {
+    vu shuffle, x;
+    vu64 a;
+    next_seeds(active, shuffle, x, a);
+    return select(active, to_unit_float(reverse_bits(laine_karras_permutation(shuffled_index(shuffle), x))), vf{});
+  }
+  void next_2d(vi active, vf& u, vf& v) {
+    vu shuffle, x;
+    vu64 a;
+    next_seeds(active, shuffle, x, a);
+    const vu y = __builtin_convertvector(mix64(a), vu);
+    const vu index = shuffled_index(shuffle);
+    u = select(active, to_unit_float(reverse_bits(laine_karras_permutation(index, x))), vf{});
+    const vu dim1 = reverse_bits(sobol_dimension1(index));
+    v = select(active, to_unit_float(reverse_bits(laine_karras_permutation(dim1, y))), vf{});
+  }
+};
+
 // A Vec3 (or Color) per lane; operations in Vec3's order.
 struct V3 {
   vf x, y, z;

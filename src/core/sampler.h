@@ -114,6 +114,10 @@ class SobolSampler {
     return {to_unit_float(x), to_unit_float(y)};
   }
   void start_stream(int) {}  // see PrimarySampleSampler
+  // The state, for lanes that step samplers together (core/lanes.h, LaneSobol).
+  uint64_t pixel_seed() const { return pixel_seed_; }
+  uint32_t reversed_index() const { return reversed_index_; }
+  uint32_t dimension() const { return dimension_; }
 
  private:
   struct Seeds {

@@ -65,29 +65,10 @@ V3 barycentric_point(const Table* table, vi index, vi active, vf b1, vf b2) {
          gather3(table, index, active, p + 24) * b2;
 }
 
-// The lanes' random numbers: each lane's own sampler, one lane at a time...
+// The lanes' random numbers: each lane's own sampler's, its generator stepped with the others'
+// (core/lanes.h), for the independent sampler...
 template <class Sampler>
-struct LaneNumbers {
-  Sampler* of[kLanes] = {};
-  void start(int i, Sampler& sampler) { of[i] = &sampler; }
-  vf next_1d(vi active) {
-    alignas(64) float u[kLanes] = {};
-    for (int i = 0; i < kLanes; ++i) {
-      if (active[i] != 0) u[i] = of[i]->next_1d();
-    }
-    return load(u);
-  }
-  void next_2d(vi active, vf& u, vf& v) {
-    alignas(64) float a[kLanes] = {}, b[kLanes] = {};
-    for (int i = 0; i < kLanes; ++i) {
-      if (active[i] == 0) continue;
-      const Point2 p = of[i]->next_2d();
-      a[i] = p.u, b[i] = p.v;
-    }
-    u = load(a), v = load(b);
-  }
-};
-// ... or, for the independent sampler, their generators stepped together.
+struct LaneNumbers;
 template <>
 struct LaneNumbers<IndependentSampler> {
   LanePcg32 rng{vu64{}, vu64{} + 1u};  // lanes not started never advance
@@ -100,6 +81,18 @@ struct LaneNumbers<IndependentSampler> {
     u = rng.next_float(active);
     v = rng.next_float(active);
   }
+};
+// ... and for the Sobol sampler.
+template <>
+struct LaneNumbers<SobolSampler> {
+  LaneSobol sobol;
+  void start(int i, const SobolSampler& sampler) {
+    sobol.pixel_seed[i] = sampler.pixel_seed();
+    sobol.reversed_index[i] = sampler.reversed_index();
+    sobol.dimension[i] = sampler.dimension();
+  }
+  vf next_1d(vi active) { return sobol.next_1d(active); }
+  void next_2d(vi active, vf& u, vf& v) { sobol.next_2d(active, u, v); }
 };
 
 // Frame::from_normal [Duff et al. 2017].
