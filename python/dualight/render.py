@@ -341,9 +341,8 @@ def render(
         has it and the scene allows it: triangles (flat or with vertex normals) lit by area
         emitters without textures, no environment, unguided. Diffuse, mirror and smooth
         glass materials without textures run lane-wide; the others go lane by lane
-        through the scalar code, which ``"auto"`` does where they cover at most 10 % of the
-        scene's area (more ran slower than one path at a time). Asked for by name, the lanes
-        take them on any share. ``"off"`` runs one path at a time; ``"sse2"``,
+        through the scalar code (faster than one path at a time even where they cover the
+        whole scene). ``"off"`` runs one path at a time; ``"sse2"``,
         ``"avx2"`` and ``"avx512"`` ask for one build (a ``ValueError`` where the CPU lacks
         it; the SSE2 build runs slower than one path at a time and serves checks). The image
         is the same, bit for bit, whichever runs: only the speed differs.

@@ -15,9 +15,9 @@
 // It covers scenes of triangles (flat, or with vertex normals interpolated lane by lane) lit by
 // untextured area emitters, without an environment, unguided: Lambertian, mirror and smooth
 // dielectric materials run lane-wide, every other BSDF and textured materials lane by lane
-// through the scalar code (auto takes them on up to a tenth of the area: such scenes are not
-// always faster in lanes). render_path falls back to the scalar tracer elsewhere (stats "lanes":
-// "off" then).
+// through the scalar code (on any share of the scene: the packets still pay, see
+// choose_path_lanes). render_path falls back to the scalar tracer elsewhere (stats "lanes": "off"
+// then).
 #pragma once
 #include <immintrin.h>
 
