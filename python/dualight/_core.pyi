@@ -482,7 +482,7 @@ class PathTracerOptions:
         sampler: Where the random numbers come from (core/sampler.h).
         first_sample: First sample index rendered (one task of a split render; see Film).
         strategies: mis: light and BSDF sampling combined by MIS; bsdf or light: that strategy alone (the other only where it alone can find the light).
-        lanes: auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and the scene allows (triangles, untextured area emitters, no environment; materials other than untextured diffuse, mirror or smooth glass lane by lane); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
+        lanes: auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and the render is unguided (materials other than untextured diffuse, mirror or smooth glass, and emitters other than untextured area emitters, lane by lane); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
@@ -554,7 +554,7 @@ class PathTracerOptions:
     @property
     def lanes(self) -> LaneIsa:
         """
-        auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and the scene allows (triangles, untextured area emitters, no environment; materials other than untextured diffuse, mirror or smooth glass lane by lane); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
+        auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and the render is unguided (materials other than untextured diffuse, mirror or smooth glass, and emitters other than untextured area emitters, lane by lane); off: one path at a time; sse2, avx2 or avx512: that build. The image is the same, bit for bit.
         """
     @property
     def max_depth(self) -> int:

@@ -338,11 +338,10 @@ def render(
         ``"path"`` only: ``"auto"`` (the default) runs sixteen paths together (eight with
         AVX2; a path that ends hands its lane to the next pixel sample), their rays traced as
         Embree packets and their shading in SIMD lanes, on AVX-512 or else AVX2 where the CPU
-        has it and the scene allows it: triangles (flat or with vertex normals) lit by area
-        emitters without textures, no environment, unguided. Diffuse, mirror and smooth
-        glass materials without textures run lane-wide; the others go lane by lane
-        through the scalar code (faster than one path at a time even where they cover the
-        whole scene). ``"off"`` runs one path at a time; ``"sse2"``,
+        has it, unguided. Diffuse, mirror and smooth glass materials and area emitters,
+        without textures, run lane-wide; other materials and emitters (environments
+        included) go lane by lane through the scalar code (faster than one path at a time
+        even where they cover the whole scene). ``"off"`` runs one path at a time; ``"sse2"``,
         ``"avx2"`` and ``"avx512"`` ask for one build (a ``ValueError`` where the CPU lacks
         it; the SSE2 build runs slower than one path at a time and serves checks). The image
         is the same, bit for bit, whichever runs: only the speed differs.

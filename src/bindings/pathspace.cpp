@@ -40,9 +40,9 @@ void bind_pathspace(py::module_& m) {
              "(the other only where it alone can find the light).");
   path.field("lanes", &PathTracerOptions::lanes,
              "auto: a tile row's paths at a time in SIMD lanes where the CPU runs AVX-512 or AVX2 and "
-             "the scene allows (triangles, untextured area emitters, no environment; materials other than "
-             "untextured diffuse, mirror or smooth glass lane by lane); off: one path at a time; sse2, avx2 "
-             "or avx512: that build. The image is the same, bit for bit.");
+             "the render is unguided (materials other than untextured diffuse, mirror or smooth glass, and "
+             "emitters other than untextured area emitters, lane by lane); off: one path at a time; sse2, "
+             "avx2 or avx512: that build. The image is the same, bit for bit.");
   add_guiding_fields(path);
   path.bind();
 

@@ -229,16 +229,21 @@ RayHit Scene::past_start_plane(const Ray& ray, RayHit rh) const {
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   const RayHit rh = past_start_plane(ray, accel_->intersect(ray));
   if (!rh.hit()) return false;
-  const uint32_t prim = rh.prim;
-  hit.p = vertex(prim, 0) * (1.f - rh.u - rh.v) + vertex(prim, 1) * rh.u + vertex(prim, 2) * rh.v;
+  hit = surface_hit(rh.prim, rh.u, rh.v, rh.t);
+  return true;
+}
+
+SurfaceHit Scene::surface_hit(uint32_t prim, float u, float v, float t) const {
+  SurfaceHit hit;
+  hit.p = vertex(prim, 0) * (1.f - u - v) + vertex(prim, 1) * u + vertex(prim, 2) * v;
   hit.n = normal_[prim];
-  hit.ns = shading_normal(prim, rh.u, rh.v);
-  hit.uv = surface_uv(prim, rh.u, rh.v);
-  hit.t = rh.t;
+  hit.ns = shading_normal(prim, u, v);
+  hit.uv = surface_uv(prim, u, v);
+  hit.t = t;
   hit.prim = prim;
   hit.material = &materials_[material_of_[prim]];
   hit.emitter = emitter_at(prim);
-  return true;
+  return hit;
 }
 
 namespace {

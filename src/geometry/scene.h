@@ -158,6 +158,8 @@ class Scene {
   bool robust_intersections() const { return robust_intersections_; }
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // The hit intersect() makes on triangle prim at barycentrics (u, v), distance t.
+  SurfaceHit surface_hit(uint32_t prim, float u, float v, float t) const;
   // True when nothing lies between p0 (on a surface with normal n0) and p1 on triangle `target`.
   // The ray aims at p1 itself and the first hit must be the target or a triangle coplanar with it
   // at p1 (a neighbour sharing the point numerically): any other surface blocks, however close to

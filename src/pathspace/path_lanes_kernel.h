@@ -150,7 +150,22 @@ inline V3 shading_normals(const PathLanesScene& ps, const LaneVertex& v, vi smoo
   return {load(ns[0]), load(ns[1]), load(ns[2])};
 }
 
-// Scene::intersect for the active lanes: those that find nothing end (no environment).
+inline Vec3 lane(const V3& v, int i) { return {v.x[i], v.y[i], v.z[i]}; }
+
+// Adds estimate(i), the scalar code's, to L of each lane i in `lanes` (L += C, as extend_path).
+template <class Estimate>
+void add_scalar_estimates(vi lanes, LanePaths& paths, const Estimate& estimate) {
+  alignas(64) float c[3][kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (lanes[i] == 0) continue;
+    const Color ci = estimate(i);
+    c[0][i] = ci.x, c[1][i] = ci.y, c[2][i] = ci.z;
+  }
+  paths.L = select(lanes, paths.L + V3{load(c[0]), load(c[1]), load(c[2])}, paths.L);
+}
+
+// Scene::intersect for the active lanes: those that find nothing end, seeing the environment
+// where the scene has one (environment_seen, by the scalar code).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
   RayHit16 packet;
   if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
@@ -162,7 +177,14 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   counters.rays += count(paths.active);
   LaneVertex v;
   v.prim = load(reinterpret_cast<const int32_t*>(packet.prim));
-  paths.active &= v.prim != -1;
+  const vi escaped = paths.active & (v.prim == -1);
+  if (ps.environment != nullptr && any(escaped)) {
+    add_scalar_estimates(escaped, paths, [&](int i) {
+      return environment_seen(*ps.scene, *ps.environment, lane(r.d, i), lane(paths.beta, i), paths.prev_pdf_w[i],
+                              paths.prev_delta[i] != 0, ps.options->strategies);
+    });
+  }
+  paths.active &= ~escaped;
   const LaneTriangle* tri = ps.triangles.data();
   v.emitter = select(paths.active, gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, emitter)), splat_i(-1));
   v.t = load(packet.tmax), v.b1 = load(packet.u), v.b2 = load(packet.v);
@@ -202,13 +224,26 @@ inline void find_scalar_bsdfs(const PathLanesScene& ps, const LaneVertex& v, vi 
   b.delta = load(delta);
 }
 
-inline Vec3 lane(const V3& v, int i) { return {v.x[i], v.y[i], v.z[i]}; }
+// Lane i's vertex as the scalar tracer's hit.
+inline SurfaceHit scalar_hit(const PathLanesScene& ps, const LaneVertex& v, int i) {
+  return ps.scene->surface_hit(static_cast<uint32_t>(v.prim[i]), v.b1[i], v.b2[i], v.t[i]);
+}
 
-// emission_seen: the emitters the lanes hit, weighted against next-event estimation.
+// emission_seen: the emitters the lanes hit, weighted against next-event estimation; textured
+// ones by the scalar code.
 inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3& wo, LanePaths& paths) {
-  const vi hit = paths.active & (v.emitter >= 0);
-  if (!any(hit)) return;
+  const vi any_hit = paths.active & (v.emitter >= 0);
+  if (!any(any_hit)) return;
   const LaneEmitter* em = ps.emitters.data();
+  const vi scalar = any_hit & gather_int(em, v.emitter, any_hit, offsetof(LaneEmitter, scalar));
+  if (any(scalar)) {
+    add_scalar_estimates(scalar, paths, [&](int i) {
+      return emission_seen(*ps.scene, scalar_hit(ps, v, i), lane(wo, i), lane(paths.beta, i), paths.prev_pdf_w[i],
+                           paths.prev_delta[i] != 0, ps.options->strategies);
+    });
+  }
+  const vi hit = any_hit & ~scalar;
+  if (!any(hit)) return;
   const V3 e_n = gather3(em, v.emitter, hit, offsetof(LaneEmitter, n));
   const V3 Le = select(dot(e_n, wo) > 0.f, gather3(em, v.emitter, hit, offsetof(LaneEmitter, Le)), splat(Vec3(0.f)));
   const vf cos_light = abs(dot(v.n, wo));
@@ -287,20 +322,32 @@ inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
 }
 
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
-// MIS-weighted against BSDF sampling, through its shadow ray.
+// MIS-weighted against BSDF sampling, through its shadow ray; other emitters by the scalar code.
 template <class Sampler>
 void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
                     LaneNumbers<Sampler>& numbers, LanePaths& paths, TraceCounters& counters) {
   // No light sample can meet a specular lobe.
   const vi delta = (v.bsdf == kLaneMirror) | (v.bsdf == kLaneDielectric) | b.delta;
   counters.skipped_connections += count(paths.active & delta);
-  const vi active = paths.active & ~delta;
-  if (!any(active)) return;
-  const vf u_select = numbers.next_1d(active);
+  const vi lit = paths.active & ~delta;
+  if (!any(lit)) return;
+  const vf u_select = numbers.next_1d(lit);
   vf u, w;
-  numbers.next_2d(active, u, w);
-  const vi e = choose_emitter(ps, u_select, active);
+  numbers.next_2d(lit, u, w);
+  const vi e = choose_emitter(ps, u_select, lit);
   const LaneEmitter* em = ps.emitters.data();
+  // Emitters other than untextured area emitters: the scalar code's next_event, lane by lane.
+  const vi scalar = lit & gather_int(em, e, lit, offsetof(LaneEmitter, scalar));
+  if (any(scalar)) {
+    add_scalar_estimates(scalar, paths, [&](int i) {
+      const SurfaceHit hit = scalar_hit(ps, v, i);
+      const Bsdf& bsdf = b.other[i] != 0 ? *b.of[i] : hit.material->bsdf;
+      return next_event(*ps.scene, hit, bsdf, {}, lane(wo, i), lane(paths.beta, i), u_select[i], {u[i], w[i]},
+                        ps.options->strategies, counters);
+    });
+  }
+  const vi active = lit & ~scalar;
+  if (!any(active)) return;
   // pdf_Le_position: the choice's pmf over the area, the emitter's pmf.
   const vf pdf_a = gather_field(em, e, active, offsetof(LaneEmitter, pdf_a));
   const vf su = sqrt(u);                     // square_to_uniform_triangle

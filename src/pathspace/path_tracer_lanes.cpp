@@ -31,18 +31,6 @@ int32_t lane_bsdf(const Material& m, float* albedo) {
   return kLaneOther;
 }
 
-// What the scene has that the lanes do not cover ("" when nothing).
-std::string lanes_lack(const Scene& scene) {
-  if (scene.environment() != nullptr) return "an environment emitter";
-  if (scene.emitter_count() == 0) return "no emitters";
-  for (const Emitter& e : scene.emitters()) {
-    const auto* area = std::get_if<AreaEmitter>(&e);
-    if (area == nullptr) return "emitters other than area emitters";
-    if (area->texture != nullptr) return "a textured emitter";
-  }
-  return "";
-}
-
 bool cpu_runs(LaneIsa isa) {
   switch (isa) {
     case LaneIsa::Avx512:
@@ -75,8 +63,7 @@ PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& o
   if (options.lanes != LaneIsa::Auto && !cpu_runs(options.lanes)) {
     throw std::invalid_argument("this CPU cannot run the lanes' instruction set asked for");
   }
-  std::string lack = lanes_lack(scene);
-  if (!lack.empty()) return {std::nullopt, "the scene has " + lack};
+  if (scene.emitter_count() == 0) return {std::nullopt, "the scene has no emitters"};
   if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
   // Materials the lanes do not compute lane-wide (kLaneOther) go lane by lane through the scalar
   // code, on any share of the scene: the packets still pay. One thread, 64x64, 128 spp, M
@@ -110,16 +97,23 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     const Emitter* e = scene.emitter_at(prim);
     t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
   }
+  // Untextured area emitters lane-wide; the others (point, spot, directional, environment,
+  // textured) lane by lane through the scalar code.
   for (const Emitter& e : scene.emitters()) {
-    const AreaEmitter& a = std::get<AreaEmitter>(e);
-    LaneEmitter le;
-    copy(a.p0, le.p[0]), copy(a.p1, le.p[1]), copy(a.p2, le.p[2]);
-    copy(a.n, le.n);
-    copy(a.Le, le.Le);
-    le.pdf_a = pdf_Le_position(a, scene.emitter_pmf(e));
-    le.prim = a.prim;
+    LaneEmitter le{};
+    le.scalar = -1;
+    const auto* a = std::get_if<AreaEmitter>(&e);
+    if (a != nullptr && a->texture == nullptr) {
+      copy(a->p0, le.p[0]), copy(a->p1, le.p[1]), copy(a->p2, le.p[2]);
+      copy(a->n, le.n);
+      copy(a->Le, le.Le);
+      le.pdf_a = pdf_Le_position(*a, scene.emitter_pmf(e));
+      le.prim = a->prim;
+      le.scalar = 0;
+    }
     ps.emitters.push_back(le);
   }
+  ps.environment = scene.environment();
   if (scene.emitter_count() <= PathLanesScene::kCountedEmitters) ps.emitter_ends = scene.emitter_choice_ends();
   return ps;
 }

@@ -12,12 +12,12 @@
 // hits (the same as its single-ray hits) and the same exact visibility test. So the image is the
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
-// It covers scenes of triangles (flat, or with vertex normals interpolated lane by lane) lit by
-// untextured area emitters, without an environment, unguided: Lambertian, mirror and smooth
-// dielectric materials run lane-wide, every other BSDF and textured materials lane by lane
-// through the scalar code (on any share of the scene: the packets still pay, see
-// choose_path_lanes). render_path falls back to the scalar tracer elsewhere (stats "lanes": "off"
-// then).
+// It covers unguided renders of triangles (flat, or with vertex normals interpolated lane by
+// lane): Lambertian, mirror and smooth dielectric materials and untextured area emitters run
+// lane-wide; every other BSDF, textured materials and every other emitter (point, spot,
+// directional, environments, textured area lights) lane by lane through the scalar code
+// (next_event.h), on any share of the scene: the packets still pay (choose_path_lanes).
+// render_path falls back to the scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
 #include <immintrin.h>
 
@@ -36,6 +36,7 @@
 #include "core/sampler.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "pathspace/next_event.h"
 #include "pathspace/path_tracer.h"
 #include "pathspace/pixel_driver.h"
 #include "pathspace/render_stats.h"
@@ -59,8 +60,9 @@ struct LaneEmitter {
   float p[3][3];  // corners
   float n[3];
   float Le[3];
-  float pdf_a;    // pmf / area, as AreaEmitter's pdf_Le_position rounds it
+  float pdf_a;     // pmf / area, as AreaEmitter's pdf_Le_position rounds it
   uint32_t prim;
+  int32_t scalar;  // -1: estimated lane by lane by the scalar code (next_event.h), not an untextured area emitter
 };
 
 struct PathLanesScene {
@@ -74,6 +76,7 @@ struct PathLanesScene {
   static constexpr size_t kCountedEmitters = 32;
   std::vector<float> emitter_ends;
   bool smooth = false;  // some triangle interpolates vertex normals
+  const Emitter* environment = nullptr;  // Scene::environment()
 };
 
 // Traces the pixel samples [0, n) (pixel_driver.h's batch estimate): a lane that ends its path
