@@ -13,11 +13,16 @@ Efficiency is ``1 / (relMSE x seconds)`` (relMSE with the pbrt-v4 offset, refere
 removed, bench_bdpt.errors); a ratio above 1 means dualight reaches the same error sooner. Also
 samples per second, and relMSE x spp (error per sample, independent of speed).
 
+The Cornell box's light variants (point, spot, sun, sky, envmap, lamp: emitters the lanes hand
+to the scalar code lane by lane) run when named in ``--scenes``, and write their own JSON.
+
 Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers_quick.json``.
 
     python benchmarks/bench_peers.py                 # 8 s budgets, 2 seeds: about 11 minutes
     python benchmarks/bench_peers.py --quick         # 1 s budgets, 1 seed, the Cornell box
     python benchmarks/bench_peers.py --lanes off     # dualight one path at a time (its own JSON)
+    python benchmarks/bench_peers.py --scenes point,spot,sun,sky,envmap,lamp --seeds 1 \
+        --threads 1 --intersections robust --budget 4   # bench_peers_lights.json, 3 minutes
 """
 
 from __future__ import annotations
@@ -35,14 +40,27 @@ import numpy as np
 
 import dualight
 from dualight import mitsuba as dmi
+from dualight import scenes
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 import bench_mlt  # noqa: E402
-from bench_bdpt import RESULTS, errors  # noqa: E402
+from bench_bdpt import RESULTS, errors, load_reference  # noqa: E402
 
 PEERS = ("scalar_rgb", "llvm_ad_rgb")
 NAMES = ("cornell", "caustics", "door")
+LIGHTS = ("point", "spot", "sun", "sky", "envmap", "lamp")  # Cornell variants, 64x64
+
+
+def prepare(name: str) -> tuple[dualight.Scene, np.ndarray, np.ndarray, dict[str, Any]]:
+    """Scene ``name`` (of NAMES or LIGHTS) with its stored reference and metadata, its BVH built."""
+    if name in NAMES:
+        _, scene, ref, ref_var, info = bench_mlt.prepare(name)
+        return scene, ref, ref_var, info
+    ref, ref_var, info = load_reference(f"{name}_64")
+    scene = scenes.cornell_box(resolution=(64, 64), variant=name)
+    dualight.render(scene, "path", spp=1, max_depth=int(info["max_depth"]), progress=False)
+    return scene, ref, ref_var, info
 
 
 def render_dualight(
@@ -125,7 +143,7 @@ def run_scene(
 ) -> dict[str, Any]:
     """Every renderer on scene ``name`` with ``threads`` threads, ``seeds`` times, with
     Embree's robust mode on or off."""
-    _, scene, ref, ref_var, info = bench_mlt.prepare(name)
+    scene, ref, ref_var, info = prepare(name)
     scene.robust_intersections = robust
     full = np.ones(ref.shape[:2], dtype=bool)
     pixels = ref.shape[0] * ref.shape[1]
@@ -185,9 +203,9 @@ def main() -> None:
     if args.quick:
         args.budget, args.seeds, args.scenes = 1.0, 1, "cornell"
     names = [n for n in args.scenes.split(",") if n]
-    unknown = [n for n in names if n not in NAMES]
+    unknown = [n for n in names if n not in NAMES + LIGHTS]
     if unknown:
-        raise SystemExit(f"unknown scenes {unknown}; choose from {', '.join(NAMES)}")
+        raise SystemExit(f"unknown scenes {unknown}; choose from {', '.join(NAMES + LIGHTS)}")
     thread_counts = sorted({int(t) for t in args.threads.split(",")})
     modes = [m for m in args.intersections.split(",") if m]
     if not modes or any(m not in ("robust", "fast") for m in modes):
@@ -229,6 +247,8 @@ def main() -> None:
     }
     RESULTS.mkdir(parents=True, exist_ok=True)
     stem = "bench_peers_quick" if args.quick else "bench_peers"
+    if any(n in LIGHTS for n in names):
+        stem += "_lights"
     out = RESULTS / (f"{stem}.json" if args.lanes == "auto" else f"{stem}_lanes_{args.lanes}.json")
     out.write_text(json.dumps(summary, indent=2) + "\n")
     print(f"wrote {out}")

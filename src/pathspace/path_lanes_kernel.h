@@ -287,6 +287,32 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
   return shadow & (load(packet.tmax) >= 0.f);
 }
 
+// Scene::visible_point for the lanes in `lanes` (targets in free space: point emitters, points
+// beyond the scene towards directions at infinity), or no ray where connections are
+// unoccluded: each segment up to its stop short of the target, without a filter.
+inline vi visible_points(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi lanes,
+                         TraceCounters& counters) {
+  if (counters.unoccluded) {
+    counters.skipped_shadow_rays += count(lanes);
+    return lanes;
+  }
+  if (!any(lanes)) return lanes;
+  counters.rays += count(lanes);
+  const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  const V3 d = y - o0;
+  const vf stop = 1.f - ps.scene->eye_clearance() / sqrt(dot(d, d));
+  const vi trace = lanes & (stop > 0.f);  // none where the stop is not ahead: visible
+  if (!any(trace)) return lanes;
+  RayHit16 packet;
+  if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
+  alignas(64) int32_t active[RayHit16::kLanes] = {};
+  store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
+  store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
+  store(packet.tmin, splat(0.f)), store(packet.tmax, stop), store(active, trace);
+  ps.scene->occluded(active, packet);
+  return lanes & ~(trace & (load(packet.tmax) < 0.f));
+}
+
 // eval_f_world and pdf_w_world of the lanes in `lanes` (of kind kLaneOther), by the scalar code,
 // into f and pdf_w.
 inline void evaluate_scalar_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi lanes, const V3& wo, const V3& wi,
@@ -321,6 +347,32 @@ inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
   return load(chosen);
 }
 
+// next_event of the lanes in `lanes` (emitters other than untextured area emitters): each light
+// sample and its contribution by the scalar code (next_event.h), their shadow rays in packets.
+inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
+                                   vi lanes, vf u_select, vf u, vf w, LanePaths& paths, TraceCounters& counters) {
+  alignas(64) float C[3][kLanes] = {}, y[3][kLanes] = {};
+  alignas(64) int32_t target[kLanes] = {}, on_surface[kLanes] = {}, in_space[kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (lanes[i] == 0) continue;
+    const SurfaceHit hit = scalar_hit(ps, v, i);
+    const Bsdf& bsdf = b.other[i] != 0 ? *b.of[i] : hit.material->bsdf;
+    LightConnection c;
+    if (!light_connection(*ps.scene, hit, bsdf, lane(wo, i), u_select[i], {u[i], w[i]}, ps.options->strategies,
+                          counters, c)) {
+      continue;
+    }
+    const Color Ci = light_contribution(c, hit, lane(paths.beta, i), {}, ps.options->strategies);
+    for (int k = 0; k < 3; ++k) C[k][i] = Ci[k], y[k][i] = c.p[k];
+    target[i] = static_cast<int32_t>(c.prim);
+    (c.on_surface ? on_surface : in_space)[i] = -1;
+  }
+  const V3 Y{load(y[0]), load(y[1]), load(y[2])};
+  const vi seen = visible(ps, v, Y, load(target), load(on_surface), counters) |
+                  visible_points(ps, v, Y, load(in_space), counters);
+  paths.L = select(seen, paths.L + V3{load(C[0]), load(C[1]), load(C[2])}, paths.L);
+}
+
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
 // MIS-weighted against BSDF sampling, through its shadow ray; other emitters by the scalar code.
 template <class Sampler>
@@ -338,14 +390,7 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const LaneEmitter* em = ps.emitters.data();
   // Emitters other than untextured area emitters: the scalar code's next_event, lane by lane.
   const vi scalar = lit & gather_int(em, e, lit, offsetof(LaneEmitter, scalar));
-  if (any(scalar)) {
-    add_scalar_estimates(scalar, paths, [&](int i) {
-      const SurfaceHit hit = scalar_hit(ps, v, i);
-      const Bsdf& bsdf = b.other[i] != 0 ? *b.of[i] : hit.material->bsdf;
-      return next_event(*ps.scene, hit, bsdf, {}, lane(wo, i), lane(paths.beta, i), u_select[i], {u[i], w[i]},
-                        ps.options->strategies, counters);
-    });
-  }
+  if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, u_select, u, w, paths, counters);
   const vi active = lit & ~scalar;
   if (!any(active)) return;
   // pdf_Le_position: the choice's pmf over the area, the emitter's pmf.
