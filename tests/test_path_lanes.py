@@ -99,7 +99,8 @@ CASES: list[tuple[str, Any, dict[str, Any]]] = [
     ("rooms", lambda: scenes.rooms(3, resolution=(20, 18)), {}),
     # Emitters the lanes hand to the scalar code lane by lane (next-event estimation, the
     # emission a path hits, the environment it escapes to): point, spot, directional, constant
-    # sky, an environment map, a textured area light; one sampler, strategy and depth each more.
+    # sky, an environment map, a textured area light; among them the Sobol sampler, each
+    # strategy alone and an unbounded depth.
     ("point light", lambda: scenes.cornell_box((40, 36), variant="point"), {}),
     ("spot light", lambda: scenes.cornell_box((40, 36), variant="spot"), {"sampler": "sobol"}),
     ("sun", lambda: scenes.cornell_box((40, 36), variant="sun"), {}),

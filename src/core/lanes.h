@@ -183,7 +183,9 @@ inline V3 operator*(const V3& a, vf s) { return {a.x * s, a.y * s, a.z * s}; }
 inline V3 operator*(const V3& a, float s) { return {a.x * s, a.y * s, a.z * s}; }
 inline V3 operator/(const V3& a, vf s) { return {a.x / s, a.y / s, a.z / s}; }
 inline vf dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 select(vi m, const V3& a, const V3& b) { return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)}; }
+inline V3 select(vi m, const V3& a, const V3& b) {
+  return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
 inline vi is_black(const V3& v) { return (v.x == 0.f) & (v.y == 0.f) & (v.z == 0.f); }
 inline vf max_component(const V3& v) { return max(v.x, max(v.y, v.z)); }
 

@@ -197,7 +197,7 @@ class Scene {
   void occluded(RayHit16& packet, const ShadowPacket& ends) const;
   // visible_point() of packets, likewise: lane i (active[i] != 0) holds the ray from
   // shadow_origin towards p1 up to its stop short of p1, traced without a filter.
-  void occluded(const int32_t* active, RayHit16& packet) const { accel_->occluded(active, packet); }
+  void occluded_points(const int32_t* active, RayHit16& packet) const { accel_->occluded(active, packet); }
   const float* target_clearances() const { return clearance_.data(); }
   // The scale spawn_origin offsets at.
   float offset_scale() const { return offset_scale_; }

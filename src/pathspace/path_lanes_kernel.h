@@ -117,7 +117,8 @@ inline V3 square_to_cosine_hemisphere(vf u, vf v) {
   const vf x = (kPi / 4.f) * (select(x_sector, b, a) / r);
   const vf z = x * x;
   const vf s = x + x * z * (-1.6666654611e-1f + z * (8.3321608736e-3f + z * -1.9515295891e-4f));
-  const vf c = 1.f - 0.5f * z + z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
+  const vf c =
+      1.f - 0.5f * z + z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
   const vf du = select(centre, splat(0.f), select(x_sector, r * c, r * s));
   const vf dv = select(centre, splat(0.f), select(x_sector, r * s, r * c));
   return {du, dv, sqrt(max(splat(0.f), 1.f - du * du - dv * dv))};
@@ -164,15 +165,21 @@ void add_scalar_estimates(vi lanes, LanePaths& paths, const Estimate& estimate) 
   paths.L = select(lanes, paths.L + V3{load(c[0]), load(c[1]), load(c[2])}, paths.L);
 }
 
+// Lanes' rays from o along d, between tmin and tmax, in Embree's packet.
+inline void store_rays(RayHit16& packet, const V3& o, const V3& d, vf tmin, vf tmax) {
+  store(packet.ox, o.x), store(packet.oy, o.y), store(packet.oz, o.z);
+  store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
+  store(packet.tmin, tmin), store(packet.tmax, tmax);
+}
+
 // Scene::intersect for the active lanes: those that find nothing end, seeing the environment
 // where the scene has one (environment_seen, by the scalar code).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
   RayHit16 packet;
   if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
   alignas(64) int32_t active[RayHit16::kLanes] = {};
-  store(packet.ox, r.o.x), store(packet.oy, r.o.y), store(packet.oz, r.o.z);
-  store(packet.dx, r.d.x), store(packet.dy, r.d.y), store(packet.dz, r.d.z);
-  store(packet.tmin, r.tmin), store(packet.tmax, r.tmax), store(active, paths.active);
+  store_rays(packet, r.o, r.d, r.tmin, r.tmax);
+  store(active, paths.active);
   ps.scene->intersect(active, packet);
   counters.rays += count(paths.active);
   LaneVertex v;
@@ -254,19 +261,28 @@ inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3
   paths.L = select(hit, paths.L + C, paths.L);
 }
 
+// The start of the shadow rays from v to y of the lanes in `lanes`: false where there is none to
+// trace (no lane, or connections unoccluded: each counted skipped, and visible); else each
+// counted, and o0 is its origin (Scene::shadow_origin).
+inline bool shadow_origins(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi lanes,
+                           TraceCounters& counters, V3& o0) {
+  if (counters.unoccluded) {
+    counters.skipped_shadow_rays += count(lanes);
+    return false;
+  }
+  if (!any(lanes)) return false;
+  counters.rays += count(lanes);
+  o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  return true;
+}
+
 // Scene::visible for the lanes in `shadow`, or no ray where connections are unoccluded
 // (shadow_ray_visible): each segment up to its short stop (short_stop, scene.cpp, computed
 // lane-wide), or to the target where it has none, through the filter (Scene::occluded).
 inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi target, vi shadow,
                   TraceCounters& counters) {
-  if (counters.unoccluded) {
-    counters.skipped_shadow_rays += count(shadow);
-    return shadow;
-  }
-  if (!any(shadow)) return shadow;
-  counters.rays += count(shadow);
-  // Scene::shadow_origin
-  const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  V3 o0;
+  if (!shadow_origins(ps, v, y, shadow, counters, o0)) return shadow;
   const V3 d = y - o0;
   const vf margin = 0.5f * gather(ps.scene->target_clearances(), select(shadow, target, splat_i(0))) / sqrt(dot(d, d));
   const vf tmax = select(margin >= 1e-5f, 1.f - min(margin, splat(0.5f)), splat(1.f));
@@ -276,9 +292,7 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
     packet = RayHit16{};
     std::fill(std::begin(q.active), std::end(q.active), 0);
   }
-  store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
-  store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
-  store(packet.tmin, splat(0.f)), store(packet.tmax, tmax);
+  store_rays(packet, o0, d, splat(0.f), tmax);
   store(q.o0x, o0.x), store(q.o0y, o0.y), store(q.o0z, o0.z);
   store(q.p1x, y.x), store(q.p1y, y.y), store(q.p1z, y.z);
   store(reinterpret_cast<int32_t*>(q.target), target), store(reinterpret_cast<int32_t*>(q.origin), v.prim);
@@ -292,13 +306,8 @@ inline vi visible(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi
 // unoccluded: each segment up to its stop short of the target, without a filter.
 inline vi visible_points(const PathLanesScene& ps, const LaneVertex& v, const V3& y, vi lanes,
                          TraceCounters& counters) {
-  if (counters.unoccluded) {
-    counters.skipped_shadow_rays += count(lanes);
-    return lanes;
-  }
-  if (!any(lanes)) return lanes;
-  counters.rays += count(lanes);
-  const V3 o0 = offset_ray_origin(v.p, select(dot(v.n, y - v.p) > 0.f, v.n, -v.n), ps.scene->offset_scale());
+  V3 o0;
+  if (!shadow_origins(ps, v, y, lanes, counters, o0)) return lanes;
   const V3 d = y - o0;
   const vf stop = 1.f - ps.scene->eye_clearance() / sqrt(dot(d, d));
   const vi trace = lanes & (stop > 0.f);  // none where the stop is not ahead: visible
@@ -306,10 +315,9 @@ inline vi visible_points(const PathLanesScene& ps, const LaneVertex& v, const V3
   RayHit16 packet;
   if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
   alignas(64) int32_t active[RayHit16::kLanes] = {};
-  store(packet.ox, o0.x), store(packet.oy, o0.y), store(packet.oz, o0.z);
-  store(packet.dx, d.x), store(packet.dy, d.y), store(packet.dz, d.z);
-  store(packet.tmin, splat(0.f)), store(packet.tmax, stop), store(active, trace);
-  ps.scene->occluded(active, packet);
+  store_rays(packet, o0, d, splat(0.f), stop);
+  store(active, trace);
+  ps.scene->occluded_points(active, packet);
   return lanes & ~(trace & (load(packet.tmax) < 0.f));
 }
 

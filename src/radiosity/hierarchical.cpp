@@ -47,7 +47,9 @@ HierarchicalSolver::HierarchicalSolver(const Scene& scene, ReceiverSamples recei
   if (options_.sweeps < 1) throw std::invalid_argument("sweeps must be >= 1");
   require_diffuse_reflectors(scene, "hierarchical radiosity");
   roots_ = static_cast<uint32_t>(scene.triangle_count());
-  if (!albedo.empty() && albedo.size() != roots_) throw std::invalid_argument("albedo must give one colour per triangle");
+  if (!albedo.empty() && albedo.size() != roots_) {
+    throw std::invalid_argument("albedo must give one colour per triangle");
+  }
   for (const Color& a : albedo) {
     for (int c = 0; c < 3; ++c) {
       if (!(a[c] >= 0.f && a[c] <= 1.f)) throw std::invalid_argument("albedo must lie in [0, 1]");
