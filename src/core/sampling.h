@@ -1,5 +1,6 @@
 // Warps from the unit square and the MIS heuristics; each warp's pdf sits beside it.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "core/vec3.h"
@@ -65,6 +66,15 @@ inline Vec3 square_to_uniform_cone(Point2 p, float cos_max) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 inline float uniform_cone_pdf(float cos_max) { return 0.5f * kInvPi / (1.f - cos_max); }
+
+// A point of [0, 1) with density proportional to (1 - x) a + x b (a, b >= 0), by inverting its
+// CDF, the root of a quadratic written so that it does not cancel [pbrt-v4 sec. A.4.2]; u where
+// both are 0.
+inline float sample_linear(float u, float a, float b) {
+  if (!(a + b > 0.f)) return u;
+  const float x = u * (a + b) / (a + std::sqrt((1.f - u) * a * a + u * b * b));
+  return std::min(x, 0x1.fffffep-1f);
+}
 
 // [Veach 1997, eq. 9.13] with beta = 2; pdfs of one sample per technique.
 inline float power_heuristic(float pdf_a, float pdf_b) {

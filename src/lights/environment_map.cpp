@@ -39,21 +39,28 @@ EnvironmentMap::EnvironmentMap(uint32_t width, uint32_t height, const std::vecto
   texels_ = padded(width, height, rgb, scale);
   width_ = width;
   height_ = height;
-  cos_theta_.resize(height_);
-  for (uint32_t y = 0; y < height_; ++y) cos_theta_[y] = std::cos(kPi * static_cast<float>(y) / (height_ - 1));
-  cos_theta_.front() = 1.f;
-  cos_theta_.back() = -1.f;
+  sin_theta_.resize(height_);
+  for (uint32_t y = 0; y < height_; ++y) sin_theta_[y] = std::sin(kPi * static_cast<float>(y) / (height_ - 1));
+  sin_theta_.front() = 0.f;
+  sin_theta_.back() = 0.f;
+  density_.resize(texels_.size());
+  for (size_t i = 0; i < texels_.size(); ++i) density_[i] = luminance(texels_[i]) * sin_theta_[i / width_];
 
   std::vector<double> row_weight(height_ - 1);
   columns_.reserve(height_ - 1);
   double flux = 0.0;  // sum over cells of mean radiance (over channels) times solid angle
+  // cos(theta) of each row of sample points, the poles exact.
+  const auto cos_theta = [this](uint32_t y) {
+    return y == 0 ? 1.f : (y + 1 == height_ ? -1.f : std::cos(kPi * static_cast<float>(y) / (height_ - 1)));
+  };
   for (uint32_t y = 0; y + 1 < height_; ++y) {
+    const float solid_angle = 2.f * kPi / static_cast<float>(width_) * (cos_theta(y) - cos_theta(y + 1));
     std::vector<double> cell(width_);
     for (uint32_t x = 0; x < width_; ++x) {
+      const std::array<float, 4> c = corners(x, y);
+      cell[x] = static_cast<double>(c[0]) + c[1] + c[2] + c[3];
       const uint32_t x1 = (x + 1) % width_;
-      const Color corners = texel(x, y) + texel(x1, y) + texel(x, y + 1) + texel(x1, y + 1);
-      cell[x] = 0.25 * luminance(corners) * cell_solid_angle(y);
-      flux += 0.25 * average(corners) * cell_solid_angle(y);
+      flux += 0.25 * average(texel(x, y) + texel(x1, y) + texel(x, y + 1) + texel(x1, y + 1)) * solid_angle;
     }
     double sum = 0.0;
     for (const double c : cell) sum += c;
@@ -85,29 +92,58 @@ Color EnvironmentMap::eval(const Vec3& d) const {
   return top * (1.f - ay) + bottom * ay;
 }
 
-std::pair<uint32_t, uint32_t> EnvironmentMap::cell_of(const Vec3& v) const {
-  float u = std::atan2(v.x, -v.z) * (0.5f * kInvPi) - 0.5f / static_cast<float>(width_);
+std::array<float, 4> EnvironmentMap::corners(uint32_t x, uint32_t y) const {
+  const uint32_t x1 = (x + 1) % width_;
+  const float* top = &density_[static_cast<size_t>(y) * width_];
+  const float* bottom = top + width_;
+  return {top[x], top[x1], bottom[x], bottom[x1]};
+}
+
+EnvironmentMap::CellPoint EnvironmentMap::cell_of(const Vec3& v) const {
+  CellPoint c;
+  // Columns of cells start at texel centres: u * width - 0.5 (periodic).
+  float u = std::atan2(v.x, -v.z) * (0.5f * kInvPi);
   u -= std::floor(u);
-  const uint32_t x = std::min(static_cast<uint32_t>(u * static_cast<float>(width_)), width_ - 1);
-  // The row whose band [cos theta_{y+1}, cos theta_y] holds v.y.
-  const auto it = std::upper_bound(cos_theta_.begin(), cos_theta_.end(), v.y, std::greater<float>());
-  const uint32_t y = static_cast<uint32_t>(std::clamp<std::ptrdiff_t>(it - cos_theta_.begin() - 1, 0, height_ - 2));
-  return {x, y};
+  float px = u * static_cast<float>(width_) - 0.5f;
+  if (px < 0.f) px += static_cast<float>(width_);
+  c.x = std::min(static_cast<uint32_t>(px), width_ - 1);
+  c.s = std::clamp(px - static_cast<float>(c.x), 0.f, 1.f);
+  const float py = std::acos(std::clamp(v.y, -1.f, 1.f)) * kInvPi * static_cast<float>(height_ - 1);
+  c.y = std::min(static_cast<uint32_t>(py), height_ - 2);
+  c.t = std::clamp(py - static_cast<float>(c.y), 0.f, 1.f);
+  c.sin_theta = std::sqrt(std::max(0.f, 1.f - v.y * v.y));
+  return c;
+}
+
+float EnvironmentMap::pdf_in_cell(float cell_pmf, const std::array<float, 4>& c, float s, float t,
+                                  float sin_theta) const {
+  const float sum = c[0] + c[1] + c[2] + c[3];
+  if (!(sum > 0.f) || !(sin_theta > 0.f)) return 0.f;
+  const float f = (1.f - t) * ((1.f - s) * c[0] + s * c[1]) + t * ((1.f - s) * c[2] + s * c[3]);
+  // Over (s, t) the patch's density is f / (sum / 4); a cell spans 1 / width by 1 / (height - 1)
+  // of (u, v), and d omega = 2 pi^2 sin(theta) du dv.
+  const float cells = static_cast<float>(width_) * static_cast<float>(height_ - 1);
+  return cell_pmf * (4.f * f / sum) * cells / (2.f * kPi * kPi * sin_theta);
 }
 
 Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w) const {
   const uint32_t y = static_cast<uint32_t>(rows_.sample(u.v));
   const uint32_t x = static_cast<uint32_t>(columns_[y].sample(u.u));
-  pdf_w = rows_.pmf(y) * columns_[y].pmf(x) / cell_solid_angle(y);
-  const float phi = kTwoPiOverWidth() * (static_cast<float>(x) + 0.5f + u.u);
-  const float cos_theta = cos_theta_[y] + (cos_theta_[y + 1] - cos_theta_[y]) * u.v;
-  const float sin_theta = std::sqrt(std::max(0.f, 1.f - cos_theta * cos_theta));
-  return to_world_.to_world(Vec3(std::sin(phi) * sin_theta, cos_theta, -std::cos(phi) * sin_theta));
+  const std::array<float, 4> c = corners(x, y);
+  // t by the patch's marginal, s by its conditional given t: both linear.
+  const float t = sample_linear(u.v, c[0] + c[1], c[2] + c[3]);
+  const float s = sample_linear(u.u, (1.f - t) * c[0] + t * c[2], (1.f - t) * c[1] + t * c[3]);
+  const float phi = 2.f * kPi * (static_cast<float>(x) + 0.5f + s) / static_cast<float>(width_);
+  const float theta = kPi * (static_cast<float>(y) + t) / static_cast<float>(height_ - 1);
+  const float sin_theta = std::sin(theta);
+  const Vec3 local(std::sin(phi) * sin_theta, std::cos(theta), -std::cos(phi) * sin_theta);
+  pdf_w = pdf_in_cell(rows_.pmf(y) * columns_[y].pmf(x), c, s, t, sin_theta);
+  return to_world_.to_world(local);
 }
 
 float EnvironmentMap::pdf(const Vec3& d) const {
-  const auto [x, y] = cell_of(to_world_.to_local(d));
-  return rows_.pmf(y) * columns_[y].pmf(x) / cell_solid_angle(y);
+  const CellPoint p = cell_of(to_world_.to_local(d));
+  return pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);
 }
 
 }  // namespace dualight

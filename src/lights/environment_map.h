@@ -4,13 +4,16 @@
 // with rows at v = row / (height - 1) (the first row is the north pole, the last the south);
 // images under 2 x 3 pixels are padded by repeating their edges, as Mitsuba does.
 //
-// Importance sampling [pbrt-v4 sec. 12.5.2; Pharr and Humphreys' piecewise-constant 2D
-// distribution]: the map's cells between sample points (width x (height - 1), the bilinear
-// patches) are chosen in proportion to their mean corner luminance times their solid angle
-// (the sin(theta) Jacobian integrated: 2 pi / width * (cos theta_0 - cos theta_1)), a row by its
-// marginal, then a column by its conditional; within a cell directions are uniform in solid
-// angle. The density is positive wherever the interpolated radiance is.
+// Importance sampling, piecewise bilinear as Mitsuba 3's envmap (its Hierarchical2D warp) [pbrt-v4
+// sec. A.5.3, SampleBilinear]: the density over (u, v) is the bilinear interpolation of each
+// sample point's luminance times sin(theta) there, so that over solid angle it follows the
+// interpolated radiance within each cell. The cells between sample points (width x (height - 1),
+// the bilinear patches) are chosen in proportion to their corners' sum, a row by its marginal,
+// then a column by its conditional; within a cell (s, t) follows the patch, t by its marginal and
+// s by its conditional, both linear. The solid-angle density is that over (u, v) divided by
+// 2 pi^2 sin(theta); it is positive wherever the interpolated radiance is, off the poles.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,15 +42,24 @@ class EnvironmentMap {
 
  private:
   Color texel(uint32_t x, uint32_t y) const { return texels_[static_cast<size_t>(y) * width_ + x]; }
-  // The cell (column, row) a local direction falls in.
-  std::pair<uint32_t, uint32_t> cell_of(const Vec3& local) const;
-  float cell_solid_angle(uint32_t row) const { return kTwoPiOverWidth() * (cos_theta_[row] - cos_theta_[row + 1]); }
-  float kTwoPiOverWidth() const { return 2.f * kPi / static_cast<float>(width_); }
+  // Where a local direction falls: its cell (column x, row y) and its place (s, t) in [0, 1]^2
+  // there, and sin(theta).
+  struct CellPoint {
+    uint32_t x = 0, y = 0;
+    float s = 0.f, t = 0.f, sin_theta = 0.f;
+  };
+  CellPoint cell_of(const Vec3& local) const;
+  // The sampling density's corner values of cell (x, y): luminance times sin(theta) at its sample
+  // points, in the order (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1).
+  std::array<float, 4> corners(uint32_t x, uint32_t y) const;
+  // The solid-angle density at a point of cell (x, y), given the cell's probability.
+  float pdf_in_cell(float cell_pmf, const std::array<float, 4>& c, float s, float t, float sin_theta) const;
 
   uint32_t width_ = 0, height_ = 0;
   std::vector<Color> texels_;       // scale included
   Frame to_world_;
-  std::vector<float> cos_theta_;    // per row of sample points
+  std::vector<float> sin_theta_;    // per row of sample points
+  std::vector<float> density_;      // per sample point: luminance times sin(theta), corners() reads
   DiscreteDistribution rows_;       // cell rows by marginal weight
   std::vector<DiscreteDistribution> columns_;  // per cell row, its cells' conditional
   double mean_radiance_ = 0.0;

@@ -1,6 +1,7 @@
 // Emitters as a closed set (lights/): flags, the area emitter's densities against each other,
 // and the scene's power-proportional choice; the members at infinity (directional, constant,
-// envmap), with a chi-square test of the environment map's sampling.
+// envmap), with a chi-square test of the environment map's sampling and its density following
+// the interpolated radiance.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -348,6 +349,42 @@ TEST_CASE("envmap_sampling_matches_its_density_chi_square") {
   const EnvironmentMap rotated = test_map(turn);
   const auto [wrong, wrong_dof] = env_sampling_chi_square(map, [&](const Vec3& d) { return rotated.pdf(d); });
   CHECK(wrong > chi_square_limit(wrong_dof));
+}
+
+// Around the sun (the texel of 40), the four bilinear patches it is a corner of, radiance falls
+// from 40 to the sky's 1.5 or less across each: sampled in proportion to the interpolated
+// radiance (times sin(theta), which the solid angle takes out again), luminance over density stays
+// within the band sin(theta) spans there. Negative control: a density uniform within each patch
+// (its mean) lets the ratio follow the radiance, over a range of more than 20.
+TEST_CASE("envmap_density_follows_the_interpolated_radiance") {
+  const EnvironmentMap map = test_map();
+  const auto direction = [](float u, float v) {
+    const float phi = 2.f * kPi * u, theta = kPi * v;
+    return Vec3(std::sin(phi) * std::sin(theta), std::cos(theta), -std::cos(phi) * std::sin(theta));
+  };
+  double ratio_min = 1e30, ratio_max = 0.0, flat_min = 1e30, flat_max = 0.0;
+  for (const uint32_t cx : {2u, 3u}) {
+    for (const uint32_t cy : {1u, 2u}) {
+      std::vector<Vec3> points;
+      for (int i = 0; i < 9; ++i) {
+        for (int j = 0; j < 9; ++j) {
+          const float s = 0.05f + 0.1125f * static_cast<float>(i), t = 0.05f + 0.1125f * static_cast<float>(j);
+          points.push_back(direction((static_cast<float>(cx) + 0.5f + s) / 12.f, (static_cast<float>(cy) + t) / 6.f));
+        }
+      }
+      double mean_pdf = 0.0;
+      for (const Vec3& d : points) mean_pdf += map.pdf(d) / static_cast<double>(points.size());
+      for (const Vec3& d : points) {
+        const double L = luminance(map.eval(d)), r = L / map.pdf(d), flat = L / mean_pdf;
+        ratio_min = std::min(ratio_min, r), ratio_max = std::max(ratio_max, r);
+        flat_min = std::min(flat_min, flat), flat_max = std::max(flat_max, flat);
+      }
+    }
+  }
+  MESSAGE("luminance / density from " << ratio_min << " to " << ratio_max << "; uniform within patches from "
+                                      << flat_min << " to " << flat_max);
+  CHECK(ratio_max / ratio_min < 2.0);  // sin(theta) spans 0.5 to 1 across these patches
+  CHECK(flat_max / flat_min > 20.0);
 }
 
 TEST_CASE("envmap_rejects_bad_images") {
