@@ -68,8 +68,8 @@ inline Vec3 square_to_uniform_cone(Point2 p, float cos_max) {
 inline float uniform_cone_pdf(float cos_max) { return 0.5f * kInvPi / (1.f - cos_max); }
 
 // A point of [0, 1) with density proportional to (1 - x) a + x b (a, b >= 0), by inverting its
-// CDF, the root of a quadratic written so that it does not cancel [pbrt-v4 sec. A.4.2]; u where
-// both are 0.
+// CDF, the root of a quadratic written so that it does not cancel (pbrt-v4's SampleLinear); u
+// where both are 0.
 inline float sample_linear(float u, float a, float b) {
   if (!(a + b > 0.f)) return u;
   const float x = u * (a + b) / (a + std::sqrt((1.f - u) * a * a + u * b * b));

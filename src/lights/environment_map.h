@@ -4,8 +4,8 @@
 // with rows at v = row / (height - 1) (the first row is the north pole, the last the south);
 // images under 2 x 3 pixels are padded by repeating their edges, as Mitsuba does.
 //
-// Importance sampling, piecewise bilinear as Mitsuba 3's envmap (its Hierarchical2D warp) [pbrt-v4
-// sec. A.5.3, SampleBilinear]: the density over (u, v) is the bilinear interpolation of each
+// Importance sampling, piecewise bilinear as Mitsuba 3's envmap (its Hierarchical2D warp; pbrt-v4's
+// SampleBilinear within a patch): the density over (u, v) is the bilinear interpolation of each
 // sample point's luminance times sin(theta) there, so that over solid angle it follows the
 // interpolated radiance within each cell. The cells between sample points (width x (height - 1),
 // the bilinear patches) are chosen in proportion to their corners' sum, a row by its marginal,
