@@ -126,17 +126,10 @@ struct LaneSobol {
     x ^= x * 0x53a22864u;
     return x;
   }
+  // The byte table's entries, gathered as floats and taken back as bits (as the kernel's gather_int).
   static vu table(int byte, vu index) {
-    const auto* base = reinterpret_cast<const int32_t*>(sobol_detail::kDimension1.by_byte[byte]);
-#if DUALIGHT_LANES_BITS == 512
-    return (vu)_mm512_i32gather_epi32((__m512i)index, base, 4);
-#elif DUALIGHT_LANES_BITS == 256
-    return (vu)_mm256_i32gather_epi32(base, (__m256i)index, 4);
-#else
-    vu r;
-    for (int k = 0; k < kLanes; ++k) r[k] = static_cast<uint32_t>(base[index[k]]);
-    return r;
-#endif
+    const auto* entries = reinterpret_cast<const float*>(sobol_detail::kDimension1.by_byte[byte]);
+    return (vu)float_to_bits(gather(entries, (vi)index));
   }
   static vu sobol_dimension1(vu index) {
     return table(0, index & 0xffu) ^ table(1, (index >> 8) & 0xffu) ^ table(2, (index >> 16) & 0xffu) ^
