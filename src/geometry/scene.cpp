@@ -315,21 +315,12 @@ struct VisibilityQuery {
   }
 };
 
-// Where a shadow ray from o0 along d = p1 - o0 (VisibilityQuery's) may stop: short of the
-// target by half the target's clearance (surface_clearance.h), so the rest of the segment meets
-// no surface but the target's own and those coplanar with it, which the filter ignores. Up to
-// there, the filtered answer is the answer to t = 1, and an unblocked ray hits nothing, so
-// Embree calls no filter at the target (the path tracer runs about 5 % faster on the Cornell and
-// caustic boxes); a blocker goes through the filter in the same query. 0 where there is no such
-// stop: a target touching another surface, or a segment too long for half the clearance to
-// stand clear of t's rounding (1e-5 of it). The path tracer's lanes compute the same lane-wide
-// (path_lanes_kernel.h, visible).
+}  // namespace
+
 float short_stop(const Vec3& d, float target_clearance) {
   const float margin = 0.5f * target_clearance / length(d);
   return margin >= 1e-5f ? 1.f - std::min(margin, 0.5f) : 0.f;
 }
-
-}  // namespace
 
 bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t target, uint32_t origin) const {
   const VisibilityQuery query(*this, shadow_origin(p0, n0, p1), p1, target, origin);
@@ -338,22 +329,6 @@ bool Scene::visible(const Vec3& p0, const Vec3& n0, const Vec3& p1, uint32_t tar
   const float stop = short_stop(ray.d, clearance_[target]);
   if (stop > 0.f) ray.tmax = stop;
   return !accel_->occluded(ray, &filter);
-}
-
-void Scene::visible(const ShadowPacket& q, int32_t* visible) const {
-  constexpr int kLanes = RayPacket::kLanes;
-  // The segments as the path tracer's lanes build them (path_lanes_kernel.h, visible).
-  RayHit16 segments{};
-  for (int i = 0; i < kLanes; ++i) {
-    if (q.active[i] == 0) continue;
-    const Vec3 o0{q.o0x[i], q.o0y[i], q.o0z[i]}, d = Vec3{q.p1x[i], q.p1y[i], q.p1z[i]} - o0;
-    const float stop = short_stop(d, clearance_[q.target[i]]);
-    segments.ox[i] = o0.x, segments.oy[i] = o0.y, segments.oz[i] = o0.z;
-    segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
-    segments.tmin[i] = 0.f, segments.tmax[i] = stop > 0.f ? stop : 1.f;
-  }
-  occluded(segments, q);
-  for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
 }
 
 namespace {

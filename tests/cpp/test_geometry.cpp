@@ -18,6 +18,24 @@ namespace {
 Scene unit_triangle_scene(Color emission) {
   return Scene({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, {0}, {Material{Lambertian{Color(0.5f)}, emission}});
 }
+
+// Scene::visible for a packet of queries, through Scene::occluded with the segments built as the
+// path tracer's lanes build them (path_lanes_kernel.h, visible): visible[i] is 1 or 0 (0 for
+// inactive lanes).
+void packet_visible(const Scene& scene, const Scene::ShadowPacket& q, int32_t* visible) {
+  constexpr int kLanes = RayPacket::kLanes;
+  RayHit16 segments{};
+  for (int i = 0; i < kLanes; ++i) {
+    if (q.active[i] == 0) continue;
+    const Vec3 o0{q.o0x[i], q.o0y[i], q.o0z[i]}, d = Vec3{q.p1x[i], q.p1y[i], q.p1z[i]} - o0;
+    const float stop = short_stop(d, scene.target_clearances()[q.target[i]]);
+    segments.ox[i] = o0.x, segments.oy[i] = o0.y, segments.oz[i] = o0.z;
+    segments.dx[i] = d.x, segments.dy[i] = d.y, segments.dz[i] = d.z;
+    segments.tmin[i] = 0.f, segments.tmax[i] = stop > 0.f ? stop : 1.f;
+  }
+  scene.occluded(segments, q);
+  for (int i = 0; i < kLanes; ++i) visible[i] = q.active[i] != 0 && segments.tmax[i] >= 0.f ? 1 : 0;
+}
 }  // namespace
 
 TEST_CASE("hits_from_both_sides_with_right_hand_normal") {
@@ -229,7 +247,7 @@ TEST_CASE("ray_packets_find_what_single_rays_find") {
     HitPacket hits;
     scene.intersect(rays, hits);
     int32_t seen[RayPacket::kLanes];
-    scene.visible(shadows, seen);
+    packet_visible(scene, shadows, seen);
     for (int i = 0; i < RayPacket::kLanes; ++i) {
       SurfaceHit hit;
       const bool found = rays.active[i] != 0 && scene.intersect(rays.ray(i), hit);
@@ -406,7 +424,7 @@ TEST_CASE("visibility_short_of_a_clear_target_equals_the_filtered_answer") {
         q.target[i] = target, q.origin[i] = origin, q.active[i] = i % 7 == 6 ? 0 : 1;
       }
       int32_t seen[RayPacket::kLanes];
-      lit.visible(q, seen);
+      packet_visible(lit, q, seen);
       for (int i = 0; i < RayPacket::kLanes; ++i) {
         if (q.active[i] == 0) {
           CHECK(seen[i] == 0);
