@@ -1,7 +1,8 @@
 // The path tracer's bounces for a chunk of lanes (path_tracer_lanes.h; kLanes of core/lanes.h):
 // extend_path of path_tracer.cpp (unidirectional path tracing with next-event estimation and MIS
-// [Veach 1997, ch. 9]) lane-wide for area emitters and Lambertian, mirror and smooth dielectric
-// surfaces [pbrt-v4 sec. 9.5], and lane by lane through the scalar code for every other BSDF.
+// [Veach 1997, ch. 9]) lane-wide for area, point, spot and directional emitters and Lambertian,
+// mirror and smooth dielectric surfaces [pbrt-v4 sec. 9.5], and lane by lane through the scalar
+// code for every other BSDF and emitter.
 // Each step names the scalar function it mirrors; the order of operations is that function's, so
 // the bits are too. Deliberately without include guard or includes: see core/lanes.h.
 
@@ -242,7 +243,7 @@ inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3
   const vi any_hit = paths.active & (v.emitter >= 0);
   if (!any(any_hit)) return;
   const LaneEmitter* em = ps.emitters.data();
-  const vi scalar = any_hit & gather_int(em, v.emitter, any_hit, offsetof(LaneEmitter, scalar));
+  const vi scalar = any_hit & (gather_int(em, v.emitter, any_hit, offsetof(LaneEmitter, kind)) != kLaneAreaEmitter);
   if (any(scalar)) {
     add_scalar_estimates(scalar, paths, [&](int i) {
       return emission_seen(*ps.scene, scalar_hit(ps, v, i), lane(wo, i), lane(paths.beta, i), paths.prev_pdf_w[i],
@@ -355,8 +356,64 @@ inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
   return load(chosen);
 }
 
-// next_event of the lanes in `lanes` (emitters other than untextured area emitters): each light
-// sample and its contribution by the scalar code (next_event.h), their shadow rays in packets.
+// eval_f_world and pdf_w_world towards wi of the lanes in `sampled`: the Lambertian's lane-wide
+// (its two cosines about the shading normal), other members' by the scalar code; cos_i the cosine
+// of wi about the shading normal.
+inline void evaluate_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi sampled, const V3& wo, const V3& wi, V3& f,
+                           vf& pdf_bsdf_w, vf& cos_i) {
+  const vf cos_o = dot(wo, v.ns);
+  cos_i = dot(wi, v.ns);
+  const vi same_side = cos_o * cos_i > 0.f;
+  f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
+  pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
+  if (any(sampled & b.other)) evaluate_scalar_bsdfs(v, b, sampled & b.other, wo, wi, f, pdf_bsdf_w);
+}
+
+// next_event of the lanes in `lanes`, whose emitters (`e`, of `kind`) are a point, a spot or a
+// direction: sample_Li (point_emitter.h, spot_emitter.h; light_sample_at_infinity,
+// distant_disk.h), then light_connection and light_contribution (next_event.h) with their
+// arithmetic in their order, a delta light keeping full weight; a spot's falloff lane by lane.
+inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b,
+                                        const V3& wo, vi lanes, vi e, vi kind, LanePaths& paths,
+                                        TraceCounters& counters) {
+  const LaneEmitter* em = ps.emitters.data();
+  const vi directional = lanes & (kind == kLaneDirectionalEmitter);
+  const vi positional = lanes & ~directional;
+  // A point or spot: towards its position, its 1 / r^2 in Le.
+  const V3 position = gather3(em, e, positional, offsetof(LaneEmitter, p));
+  const V3 to_light = position - v.p;
+  const vf dist2 = dot(to_light, to_light);
+  // A direction: the segment ends beyond the scene's bounding sphere (reach_beyond).
+  const V3 towards = gather3(em, e, directional, offsetof(LaneEmitter, n));
+  const V3 from_center = v.p - gather3(em, e, directional, offsetof(LaneEmitter, center));
+  const vf reach = 2.f * gather_field(em, e, directional, offsetof(LaneEmitter, radius)) +
+                   sqrt(dot(from_center, from_center));
+  const V3 wi = select(directional, towards, to_light / sqrt(dist2));
+  const V3 y = select(directional, v.p + towards * reach, position);
+  alignas(64) float falloff[kLanes];
+  store(falloff, splat(1.f));
+  const vi spot = positional & (kind == kLaneSpotEmitter);
+  for (int i = 0; i < kLanes; ++i) {
+    if (spot[i] != 0) falloff[i] = spot_falloff(std::get<SpotEmitter>(ps.scene->emitters()[e[i]]), -lane(wi, i));
+  }
+  const V3 I = gather3(em, e, lanes, offsetof(LaneEmitter, Le));
+  const V3 Le = select(directional, I, I * load(falloff) / dist2);
+  const vi sampled = directional | (positional & (dist2 > 0.f) & ~(spot & is_black(Le)));
+  V3 f;
+  vf pdf_bsdf_w, cos_i;
+  evaluate_bsdfs(v, b, sampled, wo, wi, f, pdf_bsdf_w, cos_i);
+  const vi black = is_black(f);
+  counters.skipped_connections += count(sampled & black);
+  const vi shadow = sampled & ~black;
+  if (!any(shadow)) return;
+  const vf pmf = gather_field(em, e, shadow, offsetof(LaneEmitter, pdf_a));
+  const V3 C = paths.beta * f * Le * (abs(cos_i) * 1.f / pmf);
+  const vi seen = visible_points(ps, v, y, shadow, counters);
+  paths.L = select(seen, paths.L + C, paths.L);
+}
+
+// next_event of the lanes in `lanes` (emitters of kind kLaneScalarEmitter): each light sample and
+// its contribution by the scalar code (next_event.h), their shadow rays in packets.
 inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
                                    vi lanes, vf u_select, vf u, vf w, LanePaths& paths, TraceCounters& counters) {
   alignas(64) float C[3][kLanes] = {}, y[3][kLanes] = {};
@@ -382,7 +439,8 @@ inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v
 }
 
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
-// MIS-weighted against BSDF sampling, through its shadow ray; other emitters by the scalar code.
+// MIS-weighted against BSDF sampling, through its shadow ray; points, spots and directions by
+// add_delta_light_next_events, other emitters by the scalar code.
 template <class Sampler>
 void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
                     LaneNumbers<Sampler>& numbers, LanePaths& paths, TraceCounters& counters) {
@@ -396,10 +454,13 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   numbers.next_2d(lit, u, w);
   const vi e = choose_emitter(ps, u_select, lit);
   const LaneEmitter* em = ps.emitters.data();
-  // Emitters other than untextured area emitters: the scalar code's next_event, lane by lane.
-  const vi scalar = lit & gather_int(em, e, lit, offsetof(LaneEmitter, scalar));
+  // Each lane by its emitter's kind: the scalar code's, points, spots and directions, or area emitters.
+  const vi kind = gather_int(em, e, lit, offsetof(LaneEmitter, kind));
+  const vi scalar = lit & (kind == kLaneScalarEmitter);
   if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, u_select, u, w, paths, counters);
-  const vi active = lit & ~scalar;
+  const vi delta_lights = lit & (kind != kLaneScalarEmitter) & (kind != kLaneAreaEmitter);
+  if (any(delta_lights)) add_delta_light_next_events(ps, v, b, wo, delta_lights, e, kind, paths, counters);
+  const vi active = lit & (kind == kLaneAreaEmitter);
   if (!any(active)) return;
   // pdf_Le_position: the choice's pmf over the area, the emitter's pmf.
   const vf pdf_a = gather_field(em, e, active, offsetof(LaneEmitter, pdf_a));
@@ -411,12 +472,9 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const vf cos_light = -dot(gather3(em, e, active, offsetof(LaneEmitter, n)), wi);
   const vi sampled = active & (cos_light > 0.f) & (dist2 > 0.f);
   const vf pdf_w = pdf_a * dist2 / cos_light;
-  // eval_f_world and pdf_w_world of the Lambertian (its two cosines about the shading normal).
-  const vf cos_o = dot(wo, v.ns), cos_i = dot(wi, v.ns);
-  const vi same_side = cos_o * cos_i > 0.f;
-  V3 f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
-  vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
-  if (any(sampled & b.other)) evaluate_scalar_bsdfs(v, b, sampled & b.other, wo, wi, f, pdf_bsdf_w);
+  V3 f;
+  vf pdf_bsdf_w, cos_i;
+  evaluate_bsdfs(v, b, sampled, wo, wi, f, pdf_bsdf_w, cos_i);
   const vi black = is_black(f);
   counters.skipped_connections += count(sampled & black);
   const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);

@@ -31,6 +31,38 @@ int32_t lane_bsdf(const Material& m, float* albedo) {
   return kLaneOther;
 }
 
+void copy(const Vec3& v, float* out) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
+
+// Untextured area, point, spot and directional emitters lane-wide; the others (environments,
+// textured area emitters) lane by lane through the scalar code.
+LaneEmitter lane_emitter(const Scene& scene, const Emitter& e) {
+  LaneEmitter le{};
+  le.kind = kLaneScalarEmitter;
+  const float pmf = scene.emitter_pmf(e);
+  if (const auto* a = std::get_if<AreaEmitter>(&e); a != nullptr && a->texture == nullptr) {
+    copy(a->p0, le.p[0]), copy(a->p1, le.p[1]), copy(a->p2, le.p[2]);
+    copy(a->n, le.n);
+    copy(a->Le, le.Le);
+    le.pdf_a = pdf_Le_position(*a, pmf);
+    le.prim = a->prim;
+    le.kind = kLaneAreaEmitter;
+  } else if (const auto* pt = std::get_if<PointEmitter>(&e)) {
+    copy(pt->p, le.p[0]), copy(pt->I, le.Le);
+    le.pdf_a = pmf;
+    le.kind = kLanePointEmitter;
+  } else if (const auto* spot = std::get_if<SpotEmitter>(&e)) {
+    copy(spot->p, le.p[0]), copy(spot->I, le.Le);
+    le.pdf_a = pmf;
+    le.kind = kLaneSpotEmitter;
+  } else if (const auto* d = std::get_if<DirectionalEmitter>(&e)) {
+    copy(-d->frame.n, le.n), copy(d->E, le.Le), copy(d->scene.center, le.center);
+    le.radius = d->scene.radius;
+    le.pdf_a = pmf;
+    le.kind = kLaneDirectionalEmitter;
+  }
+  return le;
+}
+
 bool cpu_runs(LaneIsa isa) {
   switch (isa) {
     case LaneIsa::Avx512:
@@ -85,7 +117,6 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
   ps.scene = &scene;
   ps.camera = &camera;
   ps.options = &options;
-  const auto copy = [](const Vec3& v, float* out) { out[0] = v.x, out[1] = v.y, out[2] = v.z; };
   ps.triangles.resize(scene.triangle_count());
   for (uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
     LaneTriangle& t = ps.triangles[prim];
@@ -97,22 +128,7 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     const Emitter* e = scene.emitter_at(prim);
     t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
   }
-  // Untextured area emitters lane-wide; the others (point, spot, directional, environment,
-  // textured) lane by lane through the scalar code.
-  for (const Emitter& e : scene.emitters()) {
-    LaneEmitter le{};
-    le.scalar = -1;
-    const auto* a = std::get_if<AreaEmitter>(&e);
-    if (a != nullptr && a->texture == nullptr) {
-      copy(a->p0, le.p[0]), copy(a->p1, le.p[1]), copy(a->p2, le.p[2]);
-      copy(a->n, le.n);
-      copy(a->Le, le.Le);
-      le.pdf_a = pdf_Le_position(*a, scene.emitter_pmf(e));
-      le.prim = a->prim;
-      le.scalar = 0;
-    }
-    ps.emitters.push_back(le);
-  }
+  for (const Emitter& e : scene.emitters()) ps.emitters.push_back(lane_emitter(scene, e));
   ps.environment = scene.environment();
   if (scene.emitter_count() <= PathLanesScene::kCountedEmitters) ps.emitter_ends = scene.emitter_choice_ends();
   return ps;

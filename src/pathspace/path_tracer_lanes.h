@@ -13,9 +13,9 @@
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
 // It covers unguided renders of triangles (flat, or with vertex normals interpolated lane by
-// lane): Lambertian, mirror and smooth dielectric materials and untextured area emitters run
-// lane-wide; every other BSDF, textured materials and every other emitter (point, spot,
-// directional, environments, textured area lights) lane by lane through the scalar code
+// lane): Lambertian, mirror and smooth dielectric materials and untextured area, point, spot and
+// directional emitters run lane-wide; every other BSDF, textured materials and every other
+// emitter (environments, textured area lights) lane by lane through the scalar code
 // (next_event.h), on any share of the scene: the packets still pay (choose_path_lanes).
 // render_path falls back to the scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
@@ -56,13 +56,20 @@ struct LaneTriangle {
   int32_t bsdf;       // kLaneLambertian, kLaneMirror, kLaneDielectric or kLaneOther
   int32_t smooth;     // -1: interpolates vertex normals (Scene::shading_normal), 0: flat
 };
+// The emitters the lanes sample lane-wide, each as the scalar member does; kLaneScalarEmitter:
+// any other (an environment, a textured area emitter), sampled lane by lane by the scalar code
+// (next_event.h).
+constexpr int32_t kLaneAreaEmitter = 0, kLanePointEmitter = 1, kLaneSpotEmitter = 2, kLaneDirectionalEmitter = 3,
+                  kLaneScalarEmitter = -1;
 struct LaneEmitter {
-  float p[3][3];  // corners
-  float n[3];
-  float Le[3];
-  float pdf_a;     // pmf / area, as AreaEmitter's pdf_Le_position rounds it
+  float p[3][3];       // area: corners; point, spot: p[0] the position
+  float n[3];          // area: the normal; directional: the direction towards the light
+  float Le[3];         // area: radiance; point, spot: intensity; directional: irradiance
+  float pdf_a;         // area: pmf / area, as AreaEmitter's pdf_Le_position rounds it; else the pmf
+  float center[3];     // directional: the scene's bounding sphere (reach_beyond)
+  float radius;
   uint32_t prim;
-  int32_t scalar;  // -1: estimated lane by lane by the scalar code (next_event.h), not an untextured area emitter
+  int32_t kind;        // kLaneAreaEmitter, kLanePointEmitter, ... or kLaneScalarEmitter
 };
 
 struct PathLanesScene {
