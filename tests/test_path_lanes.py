@@ -97,13 +97,14 @@ CASES: list[tuple[str, Any, dict[str, Any]]] = [
     ("smooth glossy box", _smooth_glossy_box, {}),
     ("door", lambda: scenes.door_ajar((24, 20)), {"spp": 16}),
     ("rooms", lambda: scenes.rooms(3, resolution=(20, 18)), {}),
-    # Emitters the lanes hand to the scalar code lane by lane (next-event estimation, the
-    # emission a path hits, the environment it escapes to): point, spot, directional, constant
-    # sky, an environment map, a textured area light; among them the Sobol sampler, each
-    # strategy alone and an unbounded depth.
+    # Emitters other than area lights (next-event estimation, the emission a path hits, the
+    # environment it escapes to): point, spot, directional and constant sky, lane-wide; an
+    # environment map and a textured area light, which the lanes hand to the scalar code lane by
+    # lane; among them the Sobol sampler, each strategy alone and an unbounded depth.
     ("point light", lambda: scenes.cornell_box((40, 36), variant="point"), {}),
     ("spot light", lambda: scenes.cornell_box((40, 36), variant="spot"), {"sampler": "sobol"}),
     ("sun", lambda: scenes.cornell_box((40, 36), variant="sun"), {}),
+    ("sky mis", lambda: scenes.cornell_box((40, 36), variant="sky"), {}),
     ("sky", lambda: scenes.cornell_box((40, 36), variant="sky"), {"strategies": "bsdf"}),
     ("sky light", lambda: scenes.cornell_box((40, 36), variant="sky"), {"strategies": "light"}),
     (

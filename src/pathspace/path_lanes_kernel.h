@@ -1,8 +1,8 @@
 // The path tracer's bounces for a chunk of lanes (path_tracer_lanes.h; kLanes of core/lanes.h):
 // extend_path of path_tracer.cpp (unidirectional path tracing with next-event estimation and MIS
-// [Veach 1997, ch. 9]) lane-wide for area, point, spot and directional emitters and Lambertian,
-// mirror and smooth dielectric surfaces [pbrt-v4 sec. 9.5], and lane by lane through the scalar
-// code for every other BSDF and emitter.
+// [Veach 1997, ch. 9]) lane-wide for area, point, spot, directional and constant environment
+// emitters and Lambertian, mirror and smooth dielectric surfaces [pbrt-v4 sec. 9.5], and lane by
+// lane through the scalar code for every other BSDF and emitter.
 // Each step names the scalar function it mirrors; the order of operations is that function's, so
 // the bits are too. Deliberately without include guard or includes: see core/lanes.h.
 
@@ -173,8 +173,23 @@ inline void store_rays(RayHit16& packet, const V3& o, const V3& d, vf tmin, vf t
   store(packet.tmin, tmin), store(packet.tmax, tmax);
 }
 
+// environment_seen (next_event.h) of a constant environment for the lanes in `escaped`: its
+// radiance, weighted against next-event estimation's density pdf_Li, times the throughput.
+inline void add_constant_environment_seen(const PathLanesScene& ps, LanePaths& paths, vi escaped) {
+  const LaneEmitter& env = ps.emitters[static_cast<size_t>(ps.constant_environment)];
+  const Vec3 Le{env.Le[0], env.Le[1], env.Le[2]};
+  const V3 beta_Le = paths.beta * splat(Le);
+  V3 C = beta_Le;
+  if (!is_black(Le)) {
+    const vf w = two_strategy_weight(ps.options->strategies, Strategies::Bsdf, paths.prev_pdf_w, splat(env.pdf_a));
+    C = select(paths.prev_delta, beta_Le, paths.beta * (splat(Le) * w));
+  }
+  paths.L = select(escaped, paths.L + C, paths.L);
+}
+
 // Scene::intersect for the active lanes: those that find nothing end, seeing the environment
-// where the scene has one (environment_seen, by the scalar code).
+// where the scene has one (environment_seen: lane-wide for a constant one, else by the scalar
+// code).
 inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
   RayHit16 packet;
   if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
@@ -186,7 +201,9 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   LaneVertex v;
   v.prim = load(reinterpret_cast<const int32_t*>(packet.prim));
   const vi escaped = paths.active & (v.prim == -1);
-  if (ps.environment != nullptr && any(escaped)) {
+  if (ps.constant_environment >= 0 && any(escaped)) {
+    add_constant_environment_seen(ps, paths, escaped);
+  } else if (ps.environment != nullptr && any(escaped)) {
     add_scalar_estimates(escaped, paths, [&](int i) {
       return environment_seen(*ps.scene, *ps.environment, lane(r.d, i), lane(paths.beta, i), paths.prev_pdf_w[i],
                               paths.prev_delta[i] != 0, ps.options->strategies);
@@ -412,6 +429,38 @@ inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVert
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
+// next_event of the lanes in `lanes`, whose emitter is a constant environment: sample_Li
+// (constant_emitter.h: a uniform direction, lane by lane since square_to_uniform_sphere's sine
+// and cosine are the C library's; light_sample_at_infinity), then light_connection and
+// light_contribution (next_event.h) in their order, MIS-weighted against BSDF sampling.
+inline void add_constant_environment_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b,
+                                                 const V3& wo, vi lanes, vi e, vf u, vf w, LanePaths& paths,
+                                                 TraceCounters& counters) {
+  alignas(64) float d[3][kLanes] = {};
+  for (int i = 0; i < kLanes; ++i) {
+    if (lanes[i] == 0) continue;
+    const Vec3 di = square_to_uniform_sphere({u[i], w[i]});
+    d[0][i] = di.x, d[1][i] = di.y, d[2][i] = di.z;
+  }
+  const V3 wi{load(d[0]), load(d[1]), load(d[2])};
+  const LaneEmitter* em = ps.emitters.data();
+  const V3 from_center = v.p - gather3(em, e, lanes, offsetof(LaneEmitter, center));
+  const vf reach = 2.f * gather_field(em, e, lanes, offsetof(LaneEmitter, radius)) +
+                   sqrt(dot(from_center, from_center));
+  const vf pdf_w = gather_field(em, e, lanes, offsetof(LaneEmitter, pdf_a));
+  V3 f;
+  vf pdf_bsdf_w, cos_i;
+  evaluate_bsdfs(v, b, lanes, wo, wi, f, pdf_bsdf_w, cos_i);
+  const vi black = is_black(f);
+  counters.skipped_connections += count(lanes & black);
+  const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
+  const vi shadow = lanes & ~black & (weight != 0.f);
+  if (!any(shadow)) return;
+  const V3 C = paths.beta * f * gather3(em, e, shadow, offsetof(LaneEmitter, Le)) * (abs(cos_i) * weight / pdf_w);
+  const vi seen = visible_points(ps, v, v.p + wi * reach, shadow, counters);
+  paths.L = select(seen, paths.L + C, paths.L);
+}
+
 // next_event of the lanes in `lanes` (emitters of kind kLaneScalarEmitter): each light sample and
 // its contribution by the scalar code (next_event.h), their shadow rays in packets.
 inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
@@ -440,7 +489,8 @@ inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v
 
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
 // MIS-weighted against BSDF sampling, through its shadow ray; points, spots and directions by
-// add_delta_light_next_events, other emitters by the scalar code.
+// add_delta_light_next_events, a constant environment by add_constant_environment_next_events,
+// other emitters by the scalar code.
 template <class Sampler>
 void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
                     LaneNumbers<Sampler>& numbers, LanePaths& paths, TraceCounters& counters) {
@@ -458,7 +508,9 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const vi kind = gather_int(em, e, lit, offsetof(LaneEmitter, kind));
   const vi scalar = lit & (kind == kLaneScalarEmitter);
   if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, u_select, u, w, paths, counters);
-  const vi delta_lights = lit & (kind != kLaneScalarEmitter) & (kind != kLaneAreaEmitter);
+  const vi constant = lit & (kind == kLaneConstantEmitter);
+  if (any(constant)) add_constant_environment_next_events(ps, v, b, wo, constant, e, u, w, paths, counters);
+  const vi delta_lights = lit & (kind != kLaneScalarEmitter) & (kind != kLaneAreaEmitter) & ~constant;
   if (any(delta_lights)) add_delta_light_next_events(ps, v, b, wo, delta_lights, e, kind, paths, counters);
   const vi active = lit & (kind == kLaneAreaEmitter);
   if (!any(active)) return;

@@ -33,8 +33,8 @@ int32_t lane_bsdf(const Material& m, float* albedo) {
 
 void copy(const Vec3& v, float* out) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
 
-// Untextured area, point, spot and directional emitters lane-wide; the others (environments,
-// textured area emitters) lane by lane through the scalar code.
+// Untextured area, point, spot, directional and constant environment emitters lane-wide; the
+// others (environment maps, textured area emitters) lane by lane through the scalar code.
 LaneEmitter lane_emitter(const Scene& scene, const Emitter& e) {
   LaneEmitter le{};
   le.kind = kLaneScalarEmitter;
@@ -59,6 +59,11 @@ LaneEmitter lane_emitter(const Scene& scene, const Emitter& e) {
     le.radius = d->scene.radius;
     le.pdf_a = pmf;
     le.kind = kLaneDirectionalEmitter;
+  } else if (const auto* c = std::get_if<ConstantEmitter>(&e)) {
+    copy(c->L, le.Le), copy(c->scene.center, le.center);
+    le.radius = c->scene.radius;
+    le.pdf_a = pdf_Li(*c, pmf, Vec3(0.f), 0.f, 1.f);
+    le.kind = kLaneConstantEmitter;
   }
   return le;
 }
@@ -130,6 +135,10 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
   }
   for (const Emitter& e : scene.emitters()) ps.emitters.push_back(lane_emitter(scene, e));
   ps.environment = scene.environment();
+  if (ps.environment != nullptr) {
+    const auto index = static_cast<int32_t>(ps.environment - scene.emitters().data());
+    if (ps.emitters[static_cast<size_t>(index)].kind == kLaneConstantEmitter) ps.constant_environment = index;
+  }
   if (scene.emitter_count() <= PathLanesScene::kCountedEmitters) ps.emitter_ends = scene.emitter_choice_ends();
   return ps;
 }

@@ -13,9 +13,10 @@
 // scalar tracer's, bit for bit, on every instruction set; tests hold it to that.
 //
 // It covers unguided renders of triangles (flat, or with vertex normals interpolated lane by
-// lane): Lambertian, mirror and smooth dielectric materials and untextured area, point, spot and
-// directional emitters run lane-wide; every other BSDF, textured materials and every other
-// emitter (environments, textured area lights) lane by lane through the scalar code
+// lane): Lambertian, mirror and smooth dielectric materials and untextured area, point, spot,
+// directional and constant environment emitters run lane-wide; every other BSDF, textured
+// materials and every other emitter (environment maps, textured area lights) lane by lane through
+// the scalar code
 // (next_event.h), on any share of the scene: the packets still pay (choose_path_lanes).
 // render_path falls back to the scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
@@ -60,13 +61,14 @@ struct LaneTriangle {
 // any other (an environment, a textured area emitter), sampled lane by lane by the scalar code
 // (next_event.h).
 constexpr int32_t kLaneAreaEmitter = 0, kLanePointEmitter = 1, kLaneSpotEmitter = 2, kLaneDirectionalEmitter = 3,
-                  kLaneScalarEmitter = -1;
+                  kLaneConstantEmitter = 4, kLaneScalarEmitter = -1;
 struct LaneEmitter {
   float p[3][3];       // area: corners; point, spot: p[0] the position
   float n[3];          // area: the normal; directional: the direction towards the light
-  float Le[3];         // area: radiance; point, spot: intensity; directional: irradiance
-  float pdf_a;         // area: pmf / area, as AreaEmitter's pdf_Le_position rounds it; else the pmf
-  float center[3];     // directional: the scene's bounding sphere (reach_beyond)
+  float Le[3];         // area, constant: radiance; point, spot: intensity; directional: irradiance
+  float pdf_a;         // area: pmf / area, as AreaEmitter's pdf_Le_position rounds it; constant: pdf_Li's
+                       // density (pmf / (4 pi)); else the pmf
+  float center[3];     // directional, constant: the scene's bounding sphere (reach_beyond)
   float radius;
   uint32_t prim;
   int32_t kind;        // kLaneAreaEmitter, kLanePointEmitter, ... or kLaneScalarEmitter
@@ -84,6 +86,7 @@ struct PathLanesScene {
   std::vector<float> emitter_ends;
   bool smooth = false;  // some triangle interpolates vertex normals
   const Emitter* environment = nullptr;  // Scene::environment()
+  int32_t constant_environment = -1;     // its index into emitters where it is a constant one, else -1
 };
 
 // Traces the pixel samples [0, n) (pixel_driver.h's batch estimate): a lane that ends its path
