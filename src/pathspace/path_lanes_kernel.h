@@ -461,30 +461,42 @@ inline void add_constant_environment_next_events(const PathLanesScene& ps, const
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
-// next_event of the lanes in `lanes` (emitters of kind kLaneScalarEmitter): each light sample and
-// its contribution by the scalar code (next_event.h), their shadow rays in packets.
+// next_event of the lanes in `lanes` (emitters `e` of kind kLaneScalarEmitter): each emitter's
+// sample_Li by the scalar code, lane by lane, then light_connection and light_contribution
+// (next_event.h) lane-wide with their arithmetic in their order, the shadow rays in packets.
 inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
-                                   vi lanes, vf u_select, vf u, vf w, LanePaths& paths, TraceCounters& counters) {
-  alignas(64) float C[3][kLanes] = {}, y[3][kLanes] = {};
-  alignas(64) int32_t target[kLanes] = {}, on_surface[kLanes] = {}, in_space[kLanes] = {};
+                                   vi lanes, vi e, vf u, vf w, LanePaths& paths, TraceCounters& counters) {
+  alignas(64) float wi[3][kLanes] = {}, y[3][kLanes] = {}, Le[3][kLanes] = {}, pdf_w[kLanes] = {};
+  alignas(64) int32_t target[kLanes] = {}, sampled[kLanes] = {}, on_surface[kLanes] = {}, delta[kLanes] = {};
   for (int i = 0; i < kLanes; ++i) {
     if (lanes[i] == 0) continue;
-    const SurfaceHit hit = scalar_hit(ps, v, i);
-    const Bsdf& bsdf = b.other[i] != 0 ? *b.of[i] : hit.material->bsdf;
-    LightConnection c;
-    if (!light_connection(*ps.scene, hit, bsdf, lane(wo, i), u_select[i], {u[i], w[i]}, ps.options->strategies,
-                          counters, c)) {
-      continue;
-    }
-    const Color Ci = light_contribution(c, hit, lane(paths.beta, i), {}, ps.options->strategies);
-    for (int k = 0; k < 3; ++k) C[k][i] = Ci[k], y[k][i] = c.p[k];
-    target[i] = static_cast<int32_t>(c.prim);
-    (c.on_surface ? on_surface : in_space)[i] = -1;
+    const Emitter& emitter = ps.scene->emitters()[static_cast<size_t>(e[i])];
+    LightSample ls;
+    if (!sample_Li(emitter, ps.scene->emitter_pmf(emitter), lane(v.p, i), {u[i], w[i]}, ls)) continue;
+    for (int k = 0; k < 3; ++k) wi[k][i] = ls.wi[k], y[k][i] = ls.p[k], Le[k][i] = ls.Le[k];
+    pdf_w[i] = ls.pdf_w;
+    target[i] = static_cast<int32_t>(ls.prim);
+    sampled[i] = -1;
+    on_surface[i] = ls.on_surface ? -1 : 0;
+    delta[i] = is_delta_light(emitter) ? -1 : 0;  // full weight, as light_connection's
   }
+  const V3 WI{load(wi[0]), load(wi[1]), load(wi[2])};
+  V3 f;
+  vf pdf_bsdf_w, cos_i;
+  evaluate_bsdfs(v, b, load(sampled), wo, WI, f, pdf_bsdf_w, cos_i);
+  const vi black = is_black(f);
+  counters.skipped_connections += count(load(sampled) & black);
+  const vf pdf = load(pdf_w);
+  const vf weight = select(load(delta), splat(1.f), two_strategy_weight(ps.options->strategies, Strategies::Light,
+                                                                         pdf, pdf_bsdf_w));
+  const vi shadow = load(sampled) & ~black & (weight != 0.f);
+  if (!any(shadow)) return;
+  const V3 C = paths.beta * f * V3{load(Le[0]), load(Le[1]), load(Le[2])} * (abs(cos_i) * weight / pdf);
   const V3 Y{load(y[0]), load(y[1]), load(y[2])};
-  const vi seen = visible(ps, v, Y, load(target), load(on_surface), counters) |
-                  visible_points(ps, v, Y, load(in_space), counters);
-  paths.L = select(seen, paths.L + V3{load(C[0]), load(C[1]), load(C[2])}, paths.L);
+  const vi surface = load(on_surface);
+  const vi seen = visible(ps, v, Y, load(target), shadow & surface, counters) |
+                  visible_points(ps, v, Y, shadow & ~surface, counters);
+  paths.L = select(seen, paths.L + C, paths.L);
 }
 
 // next_event: a light sample per lane (sample_Li of the area emitter the scene's choice picks),
@@ -507,7 +519,7 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   // Each lane by its emitter's kind: the scalar code's, points, spots and directions, or area emitters.
   const vi kind = gather_int(em, e, lit, offsetof(LaneEmitter, kind));
   const vi scalar = lit & (kind == kLaneScalarEmitter);
-  if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, u_select, u, w, paths, counters);
+  if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, e, u, w, paths, counters);
   const vi constant = lit & (kind == kLaneConstantEmitter);
   if (any(constant)) add_constant_environment_next_events(ps, v, b, wo, constant, e, u, w, paths, counters);
   const vi delta_lights = lit & (kind != kLaneScalarEmitter) & (kind != kLaneAreaEmitter) & ~constant;

@@ -14,10 +14,10 @@
 //
 // It covers unguided renders of triangles (flat, or with vertex normals interpolated lane by
 // lane): Lambertian, mirror and smooth dielectric materials and untextured area, point, spot,
-// directional and constant environment emitters run lane-wide; every other BSDF, textured
-// materials and every other emitter (environment maps, textured area lights) lane by lane through
-// the scalar code
-// (next_event.h), on any share of the scene: the packets still pay (choose_path_lanes).
+// directional and constant environment emitters run lane-wide; every other BSDF and textured
+// materials lane by lane through the scalar code, and so do the light samples and emission of
+// every other emitter (environment maps, textured area lights; next_event.h), on any share of
+// the scene: the packets still pay (choose_path_lanes).
 // render_path falls back to the scalar tracer elsewhere (stats "lanes": "off" then).
 #pragma once
 #include <immintrin.h>
