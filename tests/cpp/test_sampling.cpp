@@ -1,6 +1,7 @@
 // Sampling warps against their densities, the discrete distribution, frames and PCG32.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "check.h"
@@ -159,6 +160,57 @@ TEST_CASE("counting_float_item_ends_picks_what_sample_picks") {
     }
     CHECK(same);
   }
+}
+
+// sample() searches only its guide table's bracket: the same item, and the same rescaled u, as the
+// search of the whole CDF it replaced, for random distributions (zero weights, sizes past the
+// guide's 2^16 slices), at random u, at the floats next to each item's end and each slice's start,
+// and at ties (dyadic weights, whose ends are floats). Control: a search that resolves ties the
+// other way (lower_bound) is told apart.
+TEST_CASE("guided_search_picks_what_a_whole_search_picks") {
+  Pcg32 rng(11, 12);
+  bool control_differs = false;
+  for (int trial = 0; trial < 60; ++trial) {
+    const size_t n = trial == 0 ? 70000 : 1 + rng.next_uint() % (trial % 3 == 0 ? 3000 : 40);
+    std::vector<double> weights(n);
+    for (double& w : weights) {
+      w = rng.next_float() < 0.2f ? 0.0 : (trial % 2 == 0 ? 1.0 : std::exp(8.0 * rng.next_float()));
+    }
+    weights[rng.next_uint() % n] = 1.0;
+    const DiscreteDistribution d(weights);
+    // The CDF as the constructor computes it.
+    std::vector<double> cdf{0.0};
+    for (const double w : weights) cdf.push_back(cdf.back() + w);
+    const double total = cdf.back();
+    for (double& c : cdf) c /= total;
+    std::vector<float> us{0.f, std::nextafter(1.f, 0.f)};
+    for (int i = 0; i < 300; ++i) us.push_back(rng.next_float());
+    const auto near = [&us](double x) {
+      for (float u = std::nextafter(std::nextafter(static_cast<float>(x), 0.f), 0.f), k = 0; k < 5;
+           u = std::nextafter(u, 1.f), ++k) {
+        if (u >= 0.f && u < 1.f) us.push_back(u);
+      }
+    };
+    for (size_t k = 1; k < cdf.size() && k < 2000; ++k) near(cdf[k]);
+    for (int j = 1; j < 64; ++j) near(j / 64.0);
+    bool same = true;
+    for (const float u : us) {
+      const auto whole = [&](auto bound) {
+        const auto it = bound(cdf.begin() + 1, cdf.end(), static_cast<double>(u));
+        const size_t i = std::min<size_t>(static_cast<size_t>(it - cdf.begin()) - 1, n - 1);
+        const double width = cdf[i + 1] - cdf[i];
+        return std::make_pair(i, width > 0 ? static_cast<float>(std::min((u - cdf[i]) / width, 0.99999994)) : 0.f);
+      };
+      float v = u;
+      const size_t i = d.sample(v);
+      const auto upper = whole([](auto a, auto b, double x) { return std::upper_bound(a, b, x); });
+      const auto lower = whole([](auto a, auto b, double x) { return std::lower_bound(a, b, x); });
+      same = same && upper.first == i && upper.second == v;
+      control_differs = control_differs || lower.first != i;
+    }
+    CHECK(same);
+  }
+  CHECK(control_differs);
 }
 
 TEST_CASE("frames_are_orthonormal_for_any_normal") {
