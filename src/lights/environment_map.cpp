@@ -84,9 +84,12 @@ Color EnvironmentMap::eval(const Vec3& d) const {
   const float px = u * static_cast<float>(width_) - 0.5f, py = t * static_cast<float>(height_ - 1);
   const float fx0 = std::floor(px);
   const float fy = std::min(std::floor(py), static_cast<float>(height_ - 2));
-  const float ax = px - fx0, ay = py - fy;
   const uint32_t x0 = static_cast<uint32_t>(static_cast<int64_t>(fx0) + width_) % width_;
-  const uint32_t x1 = (x0 + 1) % width_, y0 = static_cast<uint32_t>(fy), y1 = y0 + 1;
+  return bilinear(x0, static_cast<uint32_t>(fy), px - fx0, py - fy);
+}
+
+Color EnvironmentMap::bilinear(uint32_t x0, uint32_t y0, float ax, float ay) const {
+  const uint32_t x1 = (x0 + 1) % width_, y1 = y0 + 1;
   const Color top = texel(x0, y0) * (1.f - ax) + texel(x1, y0) * ax;
   const Color bottom = texel(x0, y1) * (1.f - ax) + texel(x1, y1) * ax;
   return top * (1.f - ay) + bottom * ay;
@@ -126,7 +129,7 @@ float EnvironmentMap::pdf_in_cell(float cell_pmf, const std::array<float, 4>& c,
   return cell_pmf * (4.f * f / sum) * cells / (2.f * kPi * kPi * sin_theta);
 }
 
-Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w) const {
+Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w, Color* radiance) const {
   const uint32_t y = static_cast<uint32_t>(rows_.sample(u.v));
   const uint32_t x = static_cast<uint32_t>(columns_[y].sample(u.u));
   const std::array<float, 4> c = corners(x, y);
@@ -138,6 +141,8 @@ Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w) const {
   const float sin_theta = std::sin(theta);
   const Vec3 local(std::sin(phi) * sin_theta, std::cos(theta), -std::cos(phi) * sin_theta);
   pdf_w = pdf_in_cell(rows_.pmf(y) * columns_[y].pmf(x), c, s, t, sin_theta);
+  // Cell (x, y) spans texel centres x to x + 1 and sample rows y to y + 1: eval's place there is (s, t).
+  if (radiance != nullptr) *radiance = bilinear(x, y, s, t);
   return to_world_.to_world(local);
 }
 

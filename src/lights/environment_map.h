@@ -32,8 +32,10 @@ class EnvironmentMap {
 
   // Radiance arriving from world direction d (unit, pointing away from the scene).
   Color eval(const Vec3& d) const;
-  // A world direction towards the environment with its solid-angle density.
-  Vec3 sample(Point2 u, float& pdf_w) const;
+  // A world direction towards the environment with its solid-angle density, and, where
+  // `radiance` is given, eval() there, interpolated at the sample's place in its cell (the same
+  // texels and weights as eval's, without turning the direction back into coordinates).
+  Vec3 sample(Point2 u, float& pdf_w, Color* radiance = nullptr) const;
   float pdf(const Vec3& d) const;
   // Mean radiance over the sphere (mean over channels), scale included.
   double mean_radiance() const { return mean_radiance_; }
@@ -42,6 +44,8 @@ class EnvironmentMap {
 
  private:
   Color texel(uint32_t x, uint32_t y) const { return texels_[static_cast<size_t>(y) * width_ + x]; }
+  // The bilinear interpolation of texels (x0, y0) to (x0 + 1, y0 + 1), x periodic, by (ax, ay).
+  Color bilinear(uint32_t x0, uint32_t y0, float ax, float ay) const;
   // Where a local direction falls: its cell (column x, row y) and its place (s, t) in [0, 1]^2
   // there, and sin(theta).
   struct CellPoint {

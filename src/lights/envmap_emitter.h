@@ -50,9 +50,10 @@ inline bool sample_Le_direction(const EnvmapEmitter& e, float pdf_a, const Vec3&
 // A direction sampled by the map's luminance, to a point beyond the bounding sphere.
 inline bool sample_Li(const EnvmapEmitter& e, float pmf, const Vec3& ref, Point2 u, LightSample& s) {
   float pdf = 0.f;
-  const Vec3 wi = e.map->sample(u, pdf);
+  Color Le;
+  const Vec3 wi = e.map->sample(u, pdf, &Le);
   if (!(pdf > 0.f)) return false;
-  light_sample_at_infinity(e.scene, ref, wi, pmf * pdf, e.map->eval(wi), s);
+  light_sample_at_infinity(e.scene, ref, wi, pmf * pdf, Le, s);
   return true;
 }
 // Solid-angle density of sample_Li finding unit direction wi (an escaping ray's).

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "check.h"
+#include "core/rng.h"
 #include "geometry/scene.h"
 #include "lights/emitter.h"
 #include "lights/emitter_sampler.h"
@@ -385,6 +386,34 @@ TEST_CASE("envmap_density_follows_the_interpolated_radiance") {
                                       << flat_min << " to " << flat_max);
   CHECK(ratio_max / ratio_min < 2.0);  // sin(theta) spans 0.5 to 1 across these patches
   CHECK(flat_max / flat_min > 20.0);
+}
+
+// sample() reads the radiance at its sample's place in its cell: eval() of the direction it
+// returns, to rounding, at random samples of a rotated map. Control: the place half a texel off
+// in u (what reading texels from the cell's corner instead of its texel centres gives) differs.
+TEST_CASE("envmap_sample_reads_the_radiance_eval_finds") {
+  const Frame turn{Vec3(0.f, 0.f, -1.f), Vec3(0.f, 1.f, 0.f), Vec3(1.f, 0.f, 0.f)};
+  const EnvironmentMap map = test_map(turn);
+  Pcg32 rng(21, 22);
+  double worst = 0.0, control = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    const Point2 u{rng.next_float(), rng.next_float()};
+    float pdf = 0.f;
+    Color L;
+    const Vec3 w = map.sample(u, pdf, &L);
+    if (!(pdf > 0.f)) continue;
+    const Color E = map.eval(w);
+    worst = std::max(worst, static_cast<double>(max_component(vmax(L - E, E - L)) / max_component(E)));
+    // The same direction turned by half a texel (12 columns) about the map's axis (y).
+    const float c = std::cos(kPi / 12.f), sn = std::sin(kPi / 12.f);
+    const Vec3 local = turn.to_local(w);
+    const Vec3 half = turn.to_world(Vec3(c * local.x - sn * local.z, local.y, sn * local.x + c * local.z));
+    const Color H = map.eval(half);
+    control = std::max(control, static_cast<double>(max_component(vmax(L - H, H - L)) / max_component(E)));
+  }
+  MESSAGE("largest relative difference " << worst << "; half a texel off " << control);
+  CHECK(worst < 1e-4);
+  CHECK(control > 1e-2);
 }
 
 TEST_CASE("envmap_rejects_bad_images") {
