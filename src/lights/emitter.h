@@ -87,4 +87,16 @@ inline float pdf_Li(const Emitter& e, float pmf, const Vec3& wi, float dist, flo
   return with_emitter(e, [&](const auto& x) { return pdf_Li(x, pmf, wi, dist, cos_light); });
 }
 
+// What a ray leaving the scene along unit d sees of an environment: the radiance arriving along
+// -d, and in pdf_light_w pdf_Li's density of finding d. A member may compute both at once
+// (envmap_emitter.h); this is the two calls.
+template <class E>
+Color radiance_seen(const E& e, float pmf, const Vec3& d, float& pdf_light_w) {
+  pdf_light_w = pdf_Li(e, pmf, d, 0.f, 1.f);
+  return radiance(e, -d, {});
+}
+inline Color radiance_seen(const Emitter& e, float pmf, const Vec3& d, float& pdf_light_w) {
+  return with_emitter(e, [&](const auto& x) { return radiance_seen(x, pmf, d, pdf_light_w); });
+}
+
 }  // namespace dualight

@@ -146,6 +146,12 @@ Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w, Color* radiance) const {
   return to_world_.to_world(local);
 }
 
+Color EnvironmentMap::eval(const Vec3& d, float& pdf_w) const {
+  const CellPoint p = cell_of(to_world_.to_local(d));
+  pdf_w = pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);
+  return bilinear(p.x, p.y, p.s, p.t);
+}
+
 float EnvironmentMap::pdf(const Vec3& d) const {
   const CellPoint p = cell_of(to_world_.to_local(d));
   return pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);

@@ -32,6 +32,9 @@ class EnvironmentMap {
 
   // Radiance arriving from world direction d (unit, pointing away from the scene).
   Color eval(const Vec3& d) const;
+  // eval(d) and pdf(d) together: d turned into map coordinates once (the radiance interpolated at
+  // d's place in its sampling cell, the texels and weights eval finds, to rounding).
+  Color eval(const Vec3& d, float& pdf_w) const;
   // A world direction towards the environment with its solid-angle density, and, where
   // `radiance` is given, eval() there, interpolated at the sample's place in its cell (the same
   // texels and weights as eval's, without turning the direction back into coordinates).

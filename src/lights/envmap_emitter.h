@@ -59,4 +59,12 @@ inline bool sample_Li(const EnvmapEmitter& e, float pmf, const Vec3& ref, Point2
 // Solid-angle density of sample_Li finding unit direction wi (an escaping ray's).
 inline float pdf_Li(const EnvmapEmitter& e, float pmf, const Vec3& wi, float, float) { return pmf * e.map->pdf(wi); }
 
+// radiance() towards -d and pdf_Li at d (emitter.h), from one look-up of d's place in the map.
+inline Color radiance_seen(const EnvmapEmitter& e, float pmf, const Vec3& d, float& pdf_light_w) {
+  float pdf = 0.f;
+  const Color L = e.map->eval(d, pdf);
+  pdf_light_w = pmf * pdf;
+  return L;
+}
+
 }  // namespace dualight

@@ -35,9 +35,9 @@ inline Color emission_seen(const Scene& scene, const SurfaceHit& hit, const Vec3
 // estimation as emission_seen, times beta.
 inline Color environment_seen(const Scene& scene, const Emitter& env, const Vec3& d, const Color& beta,
                               float prev_pdf_w, bool prev_delta, Strategies strategies) {
-  const Color Le = radiance(env, -d, {});
+  float pdf_light_w = 0.f;
+  const Color Le = radiance_seen(env, scene.emitter_pmf(env), d, pdf_light_w);
   if (is_black(Le) || prev_delta) return beta * Le;
-  const float pdf_light_w = pdf_Li(env, scene.emitter_pmf(env), d, 0.f, 1.f);
   return beta * (Le * two_strategy_weight(strategies, Strategies::Bsdf, prev_pdf_w, pdf_light_w));
 }
 

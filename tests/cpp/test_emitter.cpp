@@ -416,6 +416,35 @@ TEST_CASE("envmap_sample_reads_the_radiance_eval_finds") {
   CHECK(control > 1e-2);
 }
 
+// eval(d, pdf) finds d's place in the map once for both: eval(d) and pdf(d) to rounding, at
+// random directions of a rotated map (poles included). Control: eval half a texel off differs.
+TEST_CASE("envmap_eval_with_its_pdf_is_eval_and_pdf") {
+  const Frame turn{Vec3(0.f, 0.f, -1.f), Vec3(0.f, 1.f, 0.f), Vec3(1.f, 0.f, 0.f)};
+  const EnvironmentMap map = test_map(turn);
+  Pcg32 rng(23, 24);
+  double worst_L = 0.0, worst_pdf = 0.0, control = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 d = i < 2 ? Vec3(0.f, i == 0 ? 1.f : -1.f, 0.f)
+                         : square_to_uniform_sphere({rng.next_float(), rng.next_float()});
+    float pdf = -1.f;
+    const Color L = map.eval(d, pdf);
+    const Color E = map.eval(d);
+    const float p = map.pdf(d);
+    const double scale = std::max(max_component(E), 1e-6f);
+    worst_L = std::max(worst_L, static_cast<double>(max_component(vmax(L - E, E - L))) / scale);
+    worst_pdf = std::max(worst_pdf, std::abs(static_cast<double>(pdf) - p) / std::max(p, 1e-6f));
+    const float c = std::cos(kPi / 12.f), sn = std::sin(kPi / 12.f);
+    const Vec3 local = turn.to_local(d);
+    const Color H = map.eval(turn.to_world(Vec3(c * local.x - sn * local.z, local.y, sn * local.x + c * local.z)));
+    control = std::max(control, static_cast<double>(max_component(vmax(L - H, H - L))) / scale);
+  }
+  MESSAGE("largest relative differences: radiance " << worst_L << ", density " << worst_pdf << "; half a texel off "
+                                                     << control);
+  CHECK(worst_L < 1e-4);
+  CHECK(worst_pdf < 1e-4);
+  CHECK(control > 1e-2);
+}
+
 TEST_CASE("envmap_rejects_bad_images") {
   const Frame id{Vec3(1.f, 0.f, 0.f), Vec3(0.f, 1.f, 0.f), Vec3(0.f, 0.f, 1.f)};
   CHECK_THROWS_AS(EnvironmentMap(2, 2, std::vector<float>(12, 0.f), 1.f, id), std::invalid_argument);  // black
