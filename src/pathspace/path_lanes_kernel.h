@@ -373,17 +373,41 @@ inline vi choose_emitter(const PathLanesScene& ps, vf u, vi active) {
   return load(chosen);
 }
 
-// eval_f_world and pdf_w_world towards wi of the lanes in `sampled`: the Lambertian's lane-wide
-// (its two cosines about the shading normal), other members' by the scalar code; cos_i the cosine
-// of wi about the shading normal.
-inline void evaluate_bsdfs(const LaneVertex& v, const ScalarBsdfs& b, vi sampled, const V3& wo, const V3& wi, V3& f,
-                           vf& pdf_bsdf_w, vf& cos_i) {
+// light_connection (next_event.h) after sample_Li, lane-wide for the lanes in `sampled` (light
+// directions wi of densities pdf_w; `delta`: the lanes whose emitter is a delta light): f and
+// wi's cosine about the shading normal (eval_f_world and pdf_w_world: the Lambertian's two
+// cosines lane-wide, other members by the scalar code), the black ones counted skipped, the MIS
+// weight against BSDF sampling (full for delta lights); `shadow`: the lanes whose shadow ray to
+// trace.
+struct LaneLightConnection {
+  V3 f;
+  vf cos_i, weight;
+  vi shadow;
+};
+inline LaneLightConnection light_connections(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b,
+                                             const V3& wo, const V3& wi, vi sampled, vf pdf_w, vi delta,
+                                             TraceCounters& counters) {
+  LaneLightConnection c;
   const vf cos_o = dot(wo, v.ns);
-  cos_i = dot(wi, v.ns);
-  const vi same_side = cos_o * cos_i > 0.f;
-  f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
-  pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(cos_i)), splat(0.f));
-  if (any(sampled & b.other)) evaluate_scalar_bsdfs(v, b, sampled & b.other, wo, wi, f, pdf_bsdf_w);
+  c.cos_i = dot(wi, v.ns);
+  const vi same_side = cos_o * c.cos_i > 0.f;
+  c.f = select(same_side, v.albedo * kInvPi, splat(Vec3(0.f)));
+  vf pdf_bsdf_w = select(same_side, cosine_hemisphere_pdf(abs(c.cos_i)), splat(0.f));
+  if (any(sampled & b.other)) evaluate_scalar_bsdfs(v, b, sampled & b.other, wo, wi, c.f, pdf_bsdf_w);
+  const vi black = is_black(c.f);
+  counters.skipped_connections += count(sampled & black);
+  c.weight = splat(1.f);
+  if (any(sampled & ~delta)) {
+    const vf mis = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
+    c.weight = select(delta, c.weight, mis);
+  }
+  c.shadow = sampled & ~black & (c.weight != 0.f);
+  return c;
+}
+
+// light_contribution (next_event.h) of connections c with radiance Le: beta f Le |cos| weight / pdf_w.
+inline V3 light_contributions(const LanePaths& paths, const LaneLightConnection& c, const V3& Le, vf pdf_w) {
+  return paths.beta * c.f * Le * (abs(c.cos_i) * c.weight / pdf_w);
 }
 
 // next_event of the lanes in `lanes`, whose emitters (`e`, of `kind`) are a point, a spot or a
@@ -416,16 +440,11 @@ inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVert
   const V3 I = gather3(em, e, lanes, offsetof(LaneEmitter, Le));
   const V3 Le = select(directional, I, I * load(falloff) / dist2);
   const vi sampled = directional | (positional & (dist2 > 0.f) & ~(spot & is_black(Le)));
-  V3 f;
-  vf pdf_bsdf_w, cos_i;
-  evaluate_bsdfs(v, b, sampled, wo, wi, f, pdf_bsdf_w, cos_i);
-  const vi black = is_black(f);
-  counters.skipped_connections += count(sampled & black);
-  const vi shadow = sampled & ~black;
-  if (!any(shadow)) return;
-  const vf pmf = gather_field(em, e, shadow, offsetof(LaneEmitter, pdf_a));
-  const V3 C = paths.beta * f * Le * (abs(cos_i) * 1.f / pmf);
-  const vi seen = visible_points(ps, v, y, shadow, counters);
+  const vf pmf = gather_field(em, e, sampled, offsetof(LaneEmitter, pdf_a));
+  const LaneLightConnection c = light_connections(ps, v, b, wo, wi, sampled, pmf, sampled, counters);
+  if (!any(c.shadow)) return;
+  const V3 C = light_contributions(paths, c, Le, pmf);
+  const vi seen = visible_points(ps, v, y, c.shadow, counters);
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
@@ -448,16 +467,10 @@ inline void add_constant_environment_next_events(const PathLanesScene& ps, const
   const vf reach = 2.f * gather_field(em, e, lanes, offsetof(LaneEmitter, radius)) +
                    sqrt(dot(from_center, from_center));
   const vf pdf_w = gather_field(em, e, lanes, offsetof(LaneEmitter, pdf_a));
-  V3 f;
-  vf pdf_bsdf_w, cos_i;
-  evaluate_bsdfs(v, b, lanes, wo, wi, f, pdf_bsdf_w, cos_i);
-  const vi black = is_black(f);
-  counters.skipped_connections += count(lanes & black);
-  const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
-  const vi shadow = lanes & ~black & (weight != 0.f);
-  if (!any(shadow)) return;
-  const V3 C = paths.beta * f * gather3(em, e, shadow, offsetof(LaneEmitter, Le)) * (abs(cos_i) * weight / pdf_w);
-  const vi seen = visible_points(ps, v, v.p + wi * reach, shadow, counters);
+  const LaneLightConnection c = light_connections(ps, v, b, wo, wi, lanes, pdf_w, splat_i(0), counters);
+  if (!any(c.shadow)) return;
+  const V3 C = light_contributions(paths, c, gather3(em, e, c.shadow, offsetof(LaneEmitter, Le)), pdf_w);
+  const vi seen = visible_points(ps, v, v.p + wi * reach, c.shadow, counters);
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
@@ -481,21 +494,14 @@ inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v
     delta[i] = is_delta_light(emitter) ? -1 : 0;  // full weight, as light_connection's
   }
   const V3 WI{load(wi[0]), load(wi[1]), load(wi[2])};
-  V3 f;
-  vf pdf_bsdf_w, cos_i;
-  evaluate_bsdfs(v, b, load(sampled), wo, WI, f, pdf_bsdf_w, cos_i);
-  const vi black = is_black(f);
-  counters.skipped_connections += count(load(sampled) & black);
   const vf pdf = load(pdf_w);
-  const vf weight = select(load(delta), splat(1.f), two_strategy_weight(ps.options->strategies, Strategies::Light,
-                                                                         pdf, pdf_bsdf_w));
-  const vi shadow = load(sampled) & ~black & (weight != 0.f);
-  if (!any(shadow)) return;
-  const V3 C = paths.beta * f * V3{load(Le[0]), load(Le[1]), load(Le[2])} * (abs(cos_i) * weight / pdf);
+  const LaneLightConnection c = light_connections(ps, v, b, wo, WI, load(sampled), pdf, load(delta), counters);
+  if (!any(c.shadow)) return;
+  const V3 C = light_contributions(paths, c, V3{load(Le[0]), load(Le[1]), load(Le[2])}, pdf);
   const V3 Y{load(y[0]), load(y[1]), load(y[2])};
   const vi surface = load(on_surface);
-  const vi seen = visible(ps, v, Y, load(target), shadow & surface, counters) |
-                  visible_points(ps, v, Y, shadow & ~surface, counters);
+  const vi seen = visible(ps, v, Y, load(target), c.shadow & surface, counters) |
+                  visible_points(ps, v, Y, c.shadow & ~surface, counters);
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
@@ -536,16 +542,10 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   const vf cos_light = -dot(gather3(em, e, active, offsetof(LaneEmitter, n)), wi);
   const vi sampled = active & (cos_light > 0.f) & (dist2 > 0.f);
   const vf pdf_w = pdf_a * dist2 / cos_light;
-  V3 f;
-  vf pdf_bsdf_w, cos_i;
-  evaluate_bsdfs(v, b, sampled, wo, wi, f, pdf_bsdf_w, cos_i);
-  const vi black = is_black(f);
-  counters.skipped_connections += count(sampled & black);
-  const vf weight = two_strategy_weight(ps.options->strategies, Strategies::Light, pdf_w, pdf_bsdf_w);
-  const vi shadow = sampled & ~black & (weight != 0.f);
-  if (!any(shadow)) return;
-  const vi seen = visible(ps, v, y, gather_int(em, e, shadow, offsetof(LaneEmitter, prim)), shadow, counters);
-  const V3 C = paths.beta * f * gather3(em, e, seen, offsetof(LaneEmitter, Le)) * (abs(cos_i) * weight / pdf_w);
+  const LaneLightConnection c = light_connections(ps, v, b, wo, wi, sampled, pdf_w, splat_i(0), counters);
+  if (!any(c.shadow)) return;
+  const vi seen = visible(ps, v, y, gather_int(em, e, c.shadow, offsetof(LaneEmitter, prim)), c.shadow, counters);
+  const V3 C = light_contributions(paths, c, gather3(em, e, seen, offsetof(LaneEmitter, Le)), pdf_w);
   paths.L = select(seen, paths.L + C, paths.L);
 }
 
