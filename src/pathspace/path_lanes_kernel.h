@@ -260,14 +260,15 @@ inline void add_emission(const PathLanesScene& ps, const LaneVertex& v, const V3
   const vi any_hit = paths.active & (v.emitter >= 0);
   if (!any(any_hit)) return;
   const LaneEmitter* em = ps.emitters.data();
-  const vi scalar = any_hit & (gather_int(em, v.emitter, any_hit, offsetof(LaneEmitter, kind)) != kLaneAreaEmitter);
+  const vi kind = gather_int(em, v.emitter, any_hit, offsetof(LaneEmitter, kind));
+  const vi scalar = any_hit & (kind == kLaneScalarEmitter);  // a textured area emitter
   if (any(scalar)) {
     add_scalar_estimates(scalar, paths, [&](int i) {
       return emission_seen(*ps.scene, scalar_hit(ps, v, i), lane(wo, i), lane(paths.beta, i), paths.prev_pdf_w[i],
                            paths.prev_delta[i] != 0, ps.options->strategies);
     });
   }
-  const vi hit = any_hit & ~scalar;
+  const vi hit = any_hit & (kind == kLaneAreaEmitter);
   if (!any(hit)) return;
   const V3 e_n = gather3(em, v.emitter, hit, offsetof(LaneEmitter, n));
   const V3 Le = select(dot(e_n, wo) > 0.f, gather3(em, v.emitter, hit, offsetof(LaneEmitter, Le)), splat(Vec3(0.f)));
@@ -419,7 +420,7 @@ inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVert
                                         TraceCounters& counters) {
   const LaneEmitter* em = ps.emitters.data();
   const vi directional = lanes & (kind == kLaneDirectionalEmitter);
-  const vi positional = lanes & ~directional;
+  const vi positional = lanes & ((kind == kLanePointEmitter) | (kind == kLaneSpotEmitter));
   // A point or spot: towards its position, its 1 / r^2 in Le.
   const V3 position = gather3(em, e, positional, offsetof(LaneEmitter, p));
   const V3 to_light = position - v.p;
@@ -435,7 +436,8 @@ inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVert
   store(falloff, splat(1.f));
   const vi spot = positional & (kind == kLaneSpotEmitter);
   for (int i = 0; i < kLanes; ++i) {
-    if (spot[i] != 0) falloff[i] = spot_falloff(std::get<SpotEmitter>(ps.scene->emitters()[e[i]]), -lane(wi, i));
+    if (spot[i] == 0) continue;
+    falloff[i] = spot_falloff(std::get<SpotEmitter>(ps.scene->emitters()[static_cast<size_t>(e[i])]), -lane(wi, i));
   }
   const V3 I = gather3(em, e, lanes, offsetof(LaneEmitter, Le));
   const V3 Le = select(directional, I, I * load(falloff) / dist2);
@@ -522,13 +524,15 @@ void add_next_event(const PathLanesScene& ps, const LaneVertex& v, const ScalarB
   numbers.next_2d(lit, u, w);
   const vi e = choose_emitter(ps, u_select, lit);
   const LaneEmitter* em = ps.emitters.data();
-  // Each lane by its emitter's kind: the scalar code's, points, spots and directions, or area emitters.
+  // Each lane by its emitter's kind: the scalar code's, a constant environment, a point, spot or
+  // direction, or an area emitter.
   const vi kind = gather_int(em, e, lit, offsetof(LaneEmitter, kind));
   const vi scalar = lit & (kind == kLaneScalarEmitter);
   if (any(scalar)) add_scalar_next_events(ps, v, b, wo, scalar, e, u, w, paths, counters);
   const vi constant = lit & (kind == kLaneConstantEmitter);
   if (any(constant)) add_constant_environment_next_events(ps, v, b, wo, constant, e, u, w, paths, counters);
-  const vi delta_lights = lit & (kind != kLaneScalarEmitter) & (kind != kLaneAreaEmitter) & ~constant;
+  const vi delta_lights =
+      lit & ((kind == kLanePointEmitter) | (kind == kLaneSpotEmitter) | (kind == kLaneDirectionalEmitter));
   if (any(delta_lights)) add_delta_light_next_events(ps, v, b, wo, delta_lights, e, kind, paths, counters);
   const vi active = lit & (kind == kLaneAreaEmitter);
   if (!any(active)) return;
