@@ -13,8 +13,9 @@ Efficiency is ``1 / (relMSE x seconds)`` (relMSE with the pbrt-v4 offset, refere
 removed, bench_bdpt.errors); a ratio above 1 means dualight reaches the same error sooner. Also
 samples per second, and relMSE x spp (error per sample, independent of speed).
 
-The Cornell box's light variants (point, spot, sun, sky, envmap, lamp: emitters the lanes hand
-to the scalar code lane by lane) run when named in ``--scenes``, and write their own JSON.
+The Cornell box's light variants (point, spot, sun, sky, envmap, lamp: emitters other than the
+area light; the lanes sample the environment map's and the textured lamp's lights lane by lane)
+run when named in ``--scenes``, and write their own JSON.
 
 Writes ``benchmarks/results/bench_peers.json``; ``--quick`` writes ``bench_peers_quick.json``.
 

@@ -175,6 +175,7 @@ inline void store_rays(RayHit16& packet, const V3& o, const V3& d, vf tmin, vf t
 
 // environment_seen (next_event.h) of a constant environment for the lanes in `escaped`: its
 // radiance, weighted against next-event estimation's density pdf_Li, times the throughput.
+[[gnu::noinline]]  // off the area emitters' path (inlined, it cost the caustic box 2 %)
 inline void add_constant_environment_seen(const PathLanesScene& ps, LanePaths& paths, vi escaped) {
   const LaneEmitter& env = ps.emitters[static_cast<size_t>(ps.constant_environment)];
   const Vec3 Le{env.Le[0], env.Le[1], env.Le[2]};
@@ -415,6 +416,7 @@ inline V3 light_contributions(const LanePaths& paths, const LaneLightConnection&
 // direction: sample_Li (point_emitter.h, spot_emitter.h; light_sample_at_infinity,
 // distant_disk.h), then light_connection and light_contribution (next_event.h) with their
 // arithmetic in their order, a delta light keeping full weight; a spot's falloff lane by lane.
+[[gnu::noinline]]  // off the area emitters' path (inlined, it cost the caustic box 2 %)
 inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b,
                                         const V3& wo, vi lanes, vi e, vi kind, LanePaths& paths,
                                         TraceCounters& counters) {
@@ -454,6 +456,7 @@ inline void add_delta_light_next_events(const PathLanesScene& ps, const LaneVert
 // (constant_emitter.h: a uniform direction, lane by lane since square_to_uniform_sphere's sine
 // and cosine are the C library's; light_sample_at_infinity), then light_connection and
 // light_contribution (next_event.h) in their order, MIS-weighted against BSDF sampling.
+[[gnu::noinline]]  // off the area emitters' path (inlined, it cost the caustic box 2 %)
 inline void add_constant_environment_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b,
                                                  const V3& wo, vi lanes, vi e, vf u, vf w, LanePaths& paths,
                                                  TraceCounters& counters) {
@@ -479,6 +482,7 @@ inline void add_constant_environment_next_events(const PathLanesScene& ps, const
 // next_event of the lanes in `lanes` (emitters `e` of kind kLaneScalarEmitter): each emitter's
 // sample_Li by the scalar code, lane by lane, then light_connection and light_contribution
 // (next_event.h) lane-wide with their arithmetic in their order, the shadow rays in packets.
+[[gnu::noinline]]  // off the area emitters' path (inlined, it cost the caustic box 2 %)
 inline void add_scalar_next_events(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, const V3& wo,
                                    vi lanes, vi e, vf u, vf w, LanePaths& paths, TraceCounters& counters) {
   alignas(64) float wi[3][kLanes] = {}, y[3][kLanes] = {}, Le[3][kLanes] = {}, pdf_w[kLanes] = {};
