@@ -39,12 +39,13 @@ EnvironmentMap::EnvironmentMap(uint32_t width, uint32_t height, const std::vecto
   texels_ = padded(width, height, rgb, scale);
   width_ = width;
   height_ = height;
-  sin_theta_.resize(height_);
-  for (uint32_t y = 0; y < height_; ++y) sin_theta_[y] = std::sin(kPi * static_cast<float>(y) / (height_ - 1));
-  sin_theta_.front() = 0.f;
-  sin_theta_.back() = 0.f;
+  // sin(theta) of each row of sample points, the poles exact.
+  std::vector<float> sin_theta(height_);
+  for (uint32_t y = 0; y < height_; ++y) sin_theta[y] = std::sin(kPi * static_cast<float>(y) / (height_ - 1));
+  sin_theta.front() = 0.f;
+  sin_theta.back() = 0.f;
   density_.resize(texels_.size());
-  for (size_t i = 0; i < texels_.size(); ++i) density_[i] = luminance(texels_[i]) * sin_theta_[i / width_];
+  for (size_t i = 0; i < texels_.size(); ++i) density_[i] = luminance(texels_[i]) * sin_theta[i / width_];
 
   std::vector<double> row_weight(height_ - 1);
   columns_.reserve(height_ - 1);
@@ -146,15 +147,16 @@ Vec3 EnvironmentMap::sample(Point2 u, float& pdf_w, Color* radiance) const {
   return to_world_.to_world(local);
 }
 
+float EnvironmentMap::pdf_at(const CellPoint& p) const {
+  return pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);
+}
+
 Color EnvironmentMap::eval(const Vec3& d, float& pdf_w) const {
   const CellPoint p = cell_of(to_world_.to_local(d));
-  pdf_w = pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);
+  pdf_w = pdf_at(p);
   return bilinear(p.x, p.y, p.s, p.t);
 }
 
-float EnvironmentMap::pdf(const Vec3& d) const {
-  const CellPoint p = cell_of(to_world_.to_local(d));
-  return pdf_in_cell(rows_.pmf(p.y) * columns_[p.y].pmf(p.x), corners(p.x, p.y), p.s, p.t, p.sin_theta);
-}
+float EnvironmentMap::pdf(const Vec3& d) const { return pdf_at(cell_of(to_world_.to_local(d))); }
 
 }  // namespace dualight

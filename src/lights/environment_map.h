@@ -61,11 +61,12 @@ class EnvironmentMap {
   std::array<float, 4> corners(uint32_t x, uint32_t y) const;
   // The solid-angle density at a point of cell (x, y), given the cell's probability.
   float pdf_in_cell(float cell_pmf, const std::array<float, 4>& c, float s, float t, float sin_theta) const;
+  // The solid-angle density at a direction's place in its cell.
+  float pdf_at(const CellPoint& p) const;
 
   uint32_t width_ = 0, height_ = 0;
   std::vector<Color> texels_;       // scale included
   Frame to_world_;
-  std::vector<float> sin_theta_;    // per row of sample points
   std::vector<float> density_;      // per sample point: luminance times sin(theta), corners() reads
   DiscreteDistribution rows_;       // cell rows by marginal weight
   std::vector<DiscreteDistribution> columns_;  // per cell row, its cells' conditional
