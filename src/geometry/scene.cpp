@@ -1,5 +1,6 @@
 #include "geometry/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -32,7 +33,7 @@ std::pair<Vec3, float> Scene::normal_and_double_area(uint32_t prim) const {
 // radiance texture, whose mean over the triangle is then the emitter's power.
 AreaEmitter Scene::area_emitter(uint32_t prim) const {
   const Material& m = material(prim);
-  AreaEmitter e{vertex(prim, 0), vertex(prim, 1), vertex(prim, 2), normal_[prim], area_[prim], prim, m.emission};
+  AreaEmitter e{vertex(prim, 0), vertex(prim, 1), vertex(prim, 2), plane_[prim].n, area_[prim], prim, m.emission};
   e.uv0 = surface_uv(prim, 0.f, 0.f);
   e.uv1 = surface_uv(prim, 1.f, 0.f);
   e.uv2 = surface_uv(prim, 0.f, 1.f);
@@ -85,7 +86,6 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
   if (extent < 1.f) offset_scale_ = std::exp2(std::floor(std::log2(extent)));
   eye_clearance_ = 1e-6f * extent;
 
-  normal_.resize(n_triangles);
   plane_.resize(n_triangles);
   area_.resize(n_triangles);
   emitter_of_prim_.assign(n_triangles, kNoEmitter);
@@ -97,7 +97,6 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     if (!(len > 0.f)) {
       throw std::invalid_argument("triangle " + std::to_string(prim) + " has zero area");
     }
-    normal_[prim] = normal;
     plane_[prim] = {normal, vertex(prim, 0)};
     area_[prim] = 0.5f * len;
     if (material(prim).emits()) {
@@ -132,7 +131,9 @@ Scene::Scene(std::vector<float> positions, std::vector<uint32_t> triangles, std:
     used.all_diffuse = used.all_diffuse && is_diffuse_reflector(f);
     used.mixed_delta = used.mixed_delta || mixes_delta(f);
   }
-  features_ = compute_scene_features(positions_, triangles_, normal_, used, emitter_triangles);
+  std::vector<Vec3> plane_normals(plane_.size());  // for the scene's features alone
+  std::transform(plane_.begin(), plane_.end(), plane_normals.begin(), [](const TrianglePlane& p) { return p.n; });
+  features_ = compute_scene_features(positions_, triangles_, plane_normals, used, emitter_triangles);
   robust_intersections_ = robust_intersections;
   accel_ = std::make_unique<EmbreeAccel>(positions_, triangles_, robust_intersections);
   clearance_ = emitter_clearances(*this);
@@ -160,7 +161,7 @@ Vec3 Scene::interpolated_normal(uint32_t prim, float u, float v) const {
   const uint32_t* t = &triangles_[3 * prim];
   const Vec3 n = vertex_normal_[t[0]] * (1.f - u - v) + vertex_normal_[t[1]] * u + vertex_normal_[t[2]] * v;
   const float len = length(n);
-  return len > 0.f ? n / len : normal_[prim];  // opposite normals cancelling: the face's own
+  return len > 0.f ? n / len : plane_[prim].n;  // opposite normals cancelling: the face's own
 }
 
 void Scene::set_vertex_uvs(std::vector<float> uvs) {
@@ -236,7 +237,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
 SurfaceHit Scene::surface_hit(uint32_t prim, float u, float v, float t) const {
   SurfaceHit hit;
   hit.p = vertex(prim, 0) * (1.f - u - v) + vertex(prim, 1) * u + vertex(prim, 2) * v;
-  hit.n = normal_[prim];
+  hit.n = plane_[prim].n;
   hit.ns = shading_normal(prim, u, v);
   hit.uv = surface_uv(prim, u, v);
   hit.t = t;

@@ -92,11 +92,11 @@ class Scene {
     const uint32_t v = triangles_[3 * prim + corner];
     return {positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]};
   }
-  Vec3 normal(uint32_t prim) const { return normal_[prim]; }
+  Vec3 normal(uint32_t prim) const { return plane_[prim].n; }
   // The shading normal at barycentrics (u, v) of vertices 1 and 2: the geometric normal on flat
   // triangles. (Inline for scenes without vertex normals or texture coordinates, most of them.)
   Vec3 shading_normal(uint32_t prim, float u, float v) const {
-    return smooth_.empty() || !smooth_[prim] ? normal_[prim] : interpolated_normal(prim, u, v);
+    return smooth_.empty() || !smooth_[prim] ? plane_[prim].n : interpolated_normal(prim, u, v);
   }
   // Whether triangle `prim` interpolates vertex normals (else its shading normal is n).
   bool smooth_shaded(uint32_t prim) const { return !smooth_.empty() && smooth_[prim] != 0; }
@@ -227,8 +227,7 @@ class Scene {
   std::vector<uint32_t> triangles_;
   std::vector<uint32_t> material_of_;
   std::vector<Material> materials_;
-  std::vector<Vec3> normal_;
-  std::vector<TrianglePlane> plane_;  // normal_ and each triangle's first vertex
+  std::vector<TrianglePlane> plane_;  // each triangle's unit normal and first vertex
   std::vector<Vec3> vertex_normal_;  // unit, per vertex; empty when every triangle is flat
   std::vector<uint8_t> smooth_;      // per triangle: 1 = interpolate vertex_normal_
   std::vector<float> uv_;            // (u, v) per vertex; empty when no mesh has any
