@@ -146,8 +146,9 @@ class Scene {
     ray.tmin = eye_clearance_;
     return ray;
   }
-  // Triangle prim's unit normal and first vertex in one record (the visibility filter reads
-  // both at every hit, on triangles only Embree has touched: one cache miss instead of three).
+  // Triangle prim's unit normal and first vertex in one record, the only place its normal is
+  // kept (the visibility filter reads both at every hit, on triangles only Embree has touched:
+  // one cache miss instead of three).
   struct TrianglePlane {
     Vec3 n, p0;
   };
