@@ -196,6 +196,14 @@ EnvironmentMap test_map(const Frame& to_world = Frame{Vec3(1.f, 0.f, 0.f), Vec3(
   return EnvironmentMap(w, h, rgb, 1.5f, to_world);
 }
 
+// World direction w turned by half a texel of test_map's 12 columns about the map's axis (y of
+// the map's frame `to_world`).
+Vec3 half_texel_turned(const Frame& to_world, const Vec3& w) {
+  const float c = std::cos(kPi / 12.f), s = std::sin(kPi / 12.f);
+  const Vec3 local = to_world.to_local(w);
+  return to_world.to_world(Vec3(c * local.x - s * local.z, local.y, s * local.x + c * local.z));
+}
+
 // Pearson's chi-square of `counts` against `expected` (bins with expected < 5 pooled) and its
 // degrees of freedom.
 std::pair<double, int> chi_square(const std::vector<double>& counts, const std::vector<double>& expected) {
@@ -404,11 +412,7 @@ TEST_CASE("envmap_sample_reads_the_radiance_eval_finds") {
     if (!(pdf > 0.f)) continue;
     const Color E = map.eval(w);
     worst = std::max(worst, static_cast<double>(max_component(vmax(L - E, E - L)) / max_component(E)));
-    // The same direction turned by half a texel (12 columns) about the map's axis (y).
-    const float c = std::cos(kPi / 12.f), sn = std::sin(kPi / 12.f);
-    const Vec3 local = turn.to_local(w);
-    const Vec3 half = turn.to_world(Vec3(c * local.x - sn * local.z, local.y, sn * local.x + c * local.z));
-    const Color H = map.eval(half);
+    const Color H = map.eval(half_texel_turned(turn, w));
     control = std::max(control, static_cast<double>(max_component(vmax(L - H, H - L)) / max_component(E)));
   }
   MESSAGE("largest relative difference " << worst << "; half a texel off " << control);
@@ -433,9 +437,7 @@ TEST_CASE("envmap_eval_with_its_pdf_is_eval_and_pdf") {
     const double scale = std::max(max_component(E), 1e-6f);
     worst_L = std::max(worst_L, static_cast<double>(max_component(vmax(L - E, E - L))) / scale);
     worst_pdf = std::max(worst_pdf, std::abs(static_cast<double>(pdf) - p) / std::max(p, 1e-6f));
-    const float c = std::cos(kPi / 12.f), sn = std::sin(kPi / 12.f);
-    const Vec3 local = turn.to_local(d);
-    const Color H = map.eval(turn.to_world(Vec3(c * local.x - sn * local.z, local.y, sn * local.x + c * local.z)));
+    const Color H = map.eval(half_texel_turned(turn, d));
     control = std::max(control, static_cast<double>(max_component(vmax(L - H, H - L))) / scale);
   }
   MESSAGE("largest relative differences: radiance " << worst_L << ", density " << worst_pdf << "; half a texel off "
