@@ -29,6 +29,44 @@ float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& w
   });
 }
 
+// Chains of delta vertices. Where a path runs from a non-delta vertex a through delta vertices
+// a1 .. b1 to a non-delta vertex b (a on the camera's side), the chain maps a direction leaving
+// a to a point b, and one leaving b to a point a, through its generalised geometry term G_c
+// [Jakob and Marschner 2012, sec. 4]: the density of b sampled from a is p_w(a) G_c / |cos a|,
+// that of a sampled from b p_w(b) G_c' / |cos b|, with G_c' = G_c (eta_a / eta_b)^2 (etendue
+// is conserved across refractions). Their ratio, all MIS needs, is free of G_c. The usual rule
+// [Veach 1997, sec. 10.3.5; pbrt-v3 sec. 16.3.4] reads every density inside the chain as 1 but
+// keeps the one-segment factors of its first segments, a -> a1 and b -> b1: its ratio across the
+// chain is the true one divided by
+//   chain_correction = G(a, a1) / G(b, b1) (eta_a / eta_b)^2
+// (G of one segment, without the cosine at a point), by which the product of ratios across the
+// chain is multiplied here. Under a glass sphere, where a1 is close to the floor point a and b1
+// far from the light point b, the usual rule gives the camera subpath that hits the light through
+// the sphere much of the weight the light tracer would take. `at(k)`: the chain in path order,
+// a = at(0) .. b = at(m + 1). A chain with an end at infinity keeps the usual rule.
+template <class At>
+float chain_correction(const At& at, int m) {
+  const Vertex& a = at(0);
+  const Vertex& b = at(m + 1);
+  if (a.at_infinity || b.at_infinity) return 1.f;
+  const auto g = [](const Vertex& end, const Vertex& next) {
+    const Vec3 d = next.p - end.p;
+    const float inv_dist2 = 1.f / dot(d, d);
+    const Vec3 w = d * std::sqrt(inv_dist2);
+    return abs_cos(end, w) * std::abs(dot(next.n, w)) * inv_dist2;
+  };
+  float eta = 1.f;  // the IOR on b's side over a's
+  for (int k = 1; k <= m; ++k) {
+    const Vertex& v = at(k);
+    const Frame frame = shading_frame(v);
+    const Vec3 wo = frame.to_local(direction(v, at(k - 1))), wi = frame.to_local(direction(v, at(k + 1)));
+    eta *= with_bsdf(v, [&](const Bsdf& bsdf) { return refraction_eta(bsdf, wo, wi); });
+  }
+  const float g_b = g(b, at(m));
+  if (!(g_b > 0.f)) return 1.f;
+  return g(a, at(1)) / g_b / (eta * eta);
+}
+
 }  // namespace
 
 float pdf_area(const PinholeCamera& camera, const Vertex& v, const Vertex* prev, const Vertex& next,
@@ -129,19 +167,29 @@ float mis_weight(const Scene& scene, const PinholeCamera& camera, const Path& li
   // Strategies with fewer camera vertices: move the connection towards the camera. The camera
   // itself (i = 0) cannot be hit by a light subpath.
   float ratio = 1.f;
+  int above = t - 1;  // the last vertex passed that is not delta
   for (int i = t - 1; i > 0; --i) {
     const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : cam[i].pdf_rev);
     ratio *= remap0(rev) / remap0(cam[i].pdf_fwd);
     const bool delta_i = i != t - 1 && cam[i].delta;  // the connection vertex is never delta
-    if (!delta_i && !cam[i - 1].delta) other(s + t - i, ratio);
+    if (delta_i) continue;
+    if (above > i + 1) ratio *= chain_correction([&](int k) -> const Vertex& { return cam[i + k]; }, above - i - 1);
+    above = i;
+    if (!cam[i - 1].delta) other(s + t - i, ratio);
   }
   // Strategies with fewer light vertices: move the connection towards the emitter.
   ratio = 1.f;
+  above = s - 1;
   for (int i = s - 1; i >= 0; --i) {
     const Vertex& v = (s == 1 && i == 0) ? sampled : light[i];
     const float rev = i == s - 1 ? qs_rev : (i == s - 2 ? qs_minus_rev : light[i].pdf_rev);
     ratio *= remap0(rev) / remap0(v.pdf_fwd);
     const bool delta_i = i != s - 1 && light[i].delta;
+    if (delta_i) continue;
+    if (above > i + 1) {
+      ratio /= chain_correction([&](int k) -> const Vertex& { return light[above - k]; }, above - i - 1);
+    }
+    above = i;
     // Before the emitter vertex: a delta position or direction (a point light, a directional
     // one) cannot be hit by a camera path.
     const bool delta_before = i > 0 ? light[i - 1].delta : is_delta_light(*v.emitter);

@@ -3,11 +3,13 @@
 // standing in for light[0] when s = 1, or for camera[0] when t = 1), each other strategy's density
 // relative to this one's is a product of ratios pdf_rev / pdf_fwd along the path; the weight is
 // 1 / (1 + sum of h(ratio)) with h the power (squared) or balance (identity) heuristic. Only the
-// four vertices at the connection need densities for this strategy; the rest are cached. With one
-// strategy alone (strategies.h), the weight is 1 for the most preferred strategy that can sample
-// the path and 0 for the others. With guides (guided BDPT), a surface vertex's density of
-// continuing a subpath is its guide's mixture (guided_sampling.h): the radiance guide's where a
-// camera subpath continues, the importance guide's where a light subpath does.
+// four vertices at the connection need densities for this strategy; the rest are cached. Across
+// a chain of delta vertices the ratio is that of the chain's true end densities (mis_weight.cpp,
+// chain_correction). With one strategy alone (strategies.h), the weight is 1 for the most
+// preferred strategy that can sample the path and 0 for the others. With guides (guided BDPT),
+// a surface vertex's density of continuing a subpath is its guide's mixture (guided_sampling.h):
+// the radiance guide's where a camera subpath continues, the importance guide's where a light
+// subpath does.
 #pragma once
 #include "pathspace/path.h"
 #include "pathspace/strategies.h"

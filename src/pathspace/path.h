@@ -7,8 +7,9 @@
 //   pdf_rev  the area density with which sampling in the other direction (from i + 1, having come
 //            from i + 2) would generate vertex i;
 //   delta    vertex i scattered by a Dirac lobe (no connection can end there).
-// Delta scattering stores 0 in the affected densities; MIS ratios read 0 as 1 (pbrt's remap0)
-// and skip strategies that would connect at a delta vertex.
+// Delta scattering stores 0 in the affected densities; MIS ratios read 0 as 1 (pbrt's remap0),
+// skip strategies that would connect at a delta vertex, and correct the ratio across each chain
+// of delta vertices (mis_weight.cpp, chain_correction).
 #pragma once
 #include <cstdint>
 #include <utility>

@@ -124,6 +124,7 @@ namespace {
 struct StrategySum {
   float sum = 0.f;
   bool any_delta = false;  // some strategy was left out for connecting at a delta vertex
+  std::vector<float> weight;  // by s, the number of light vertices; -1: the strategy cannot make the path
 };
 
 // The MIS weights of the strategies (s, t = n - s) that can make the complete path `full`
@@ -152,6 +153,7 @@ StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeurist
     if (!full[j + 1].delta) p_light[j] = pdf_area(kCamera, full[j + 1], &full[j + 2], full[j], importance);
   }
   StrategySum out;
+  out.weight.assign(n + 1, -1.f);
   for (size_t t = 1; t <= n; ++t) {
     const size_t s = n - t;
     if ((s == 1 && t == 1) || (s == 0 && point)) continue;
@@ -174,8 +176,9 @@ StrategySum strategy_weight_sum(const Scene& scene, const Path& full, MisHeurist
     }
     const Vertex sampled = s == 1 ? light[0] : Vertex{};
     Vertex cam_vertex = full[0];
-    out.sum += mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
-                          static_cast<int>(t), heuristic, strategies, mis_guides);
+    out.weight[s] = mis_weight(scene, kCamera, light, cam, t == 1 ? cam_vertex : sampled, static_cast<int>(s),
+                               static_cast<int>(t), heuristic, strategies, mis_guides);
+    out.sum += out.weight[s];
   }
   return out;
 }
@@ -210,6 +213,51 @@ TEST_CASE("mis_weights_of_all_strategies_sum_to_one") {
   }
   CHECK(checked >= 100);
   CHECK(with_delta >= 10);
+}
+
+TEST_CASE("mis_weights_through_a_mirror_follow_the_chains_true_densities") {
+  // A path camera -> a (diffuse) -> mirror -> b (on the emitter) is made by two strategies: the
+  // camera subpath hitting the emitter (s = 0) and the light subpath seen by the camera (s = 3).
+  // Through a plane mirror the chain is an isometry: b sampled from a has density
+  // p_w(a) |cos b| / D^2 and a from b p_w(b) |cos a| / D^2, with D the path's length from a to b
+  // (the mirror image's distance), so the power heuristic's weight is known in closed form.
+  // Control: the usual rule (each end's density through its own first segment) gives other
+  // weights on most of these paths.
+  const Scene scene = box_with_mirror();
+  const WalkLimits limits{3, 1 << 30};
+  TraceCounters rays;
+  Path path;
+  size_t checked = 0, usual_off = 0;
+  for (uint32_t i = 0; i < 200000 && checked < 200; ++i) {
+    IndependentSampler sampler(7, 1, i);
+    const Point2 u = sampler.next_2d();
+    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+    if (path.size() < 4 || path[1].delta || !path[2].delta || !path[3].is_emitter()) continue;
+    if (dot(path[3].n, path[2].p - path[3].p) <= 0.f) continue;
+    const Path full(path.begin(), path.begin() + 4);
+    const StrategySum r = strategy_weight_sum(scene, full, MisHeuristic::Power);
+    const Vertex &a = full[1], &m = full[2];
+    Vertex b = full[3];
+    b.type = VertexType::Light;
+    const Vec3 am = m.p - a.p, bm = m.p - b.p;
+    const float D = length(am) + length(bm);
+    const float pw_a = surface_pdf_w(a, direction(a, full[0]), normalize(am), TransportMode::Radiance);
+    const float pw_b = emission_pdf_w(b, normalize(bm));
+    const float p_camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a * std::abs(dot(b.n, normalize(bm))) / (D * D);
+    const float p_light = pdf_light_origin(scene, b) * pw_b * std::abs(dot(a.n, normalize(am))) / (D * D);
+    const float expected = p_camera * p_camera / (p_camera * p_camera + p_light * p_light);
+    CHECK_NEAR(r.weight[0], expected, 1e-4f);
+    CHECK_NEAR(r.weight[0] + r.weight[3], 1.f, 1e-5f);
+    // The usual rule's ratio: the two first segments' one-segment densities at the mirror.
+    const float cos_m_a = std::abs(dot(m.n, normalize(am))), cos_m_b = std::abs(dot(m.n, normalize(bm)));
+    const float usual = (pdf_light_origin(scene, b) * pw_b * cos_m_b / dot(bm, bm)) /
+                        (pdf_area(kCamera, full[0], nullptr, a) * pw_a * cos_m_a / dot(am, am));
+    usual_off += std::abs(1.f / (1.f + usual * usual) - expected) > 1e-2f;
+    ++checked;
+  }
+  CHECK(checked >= 50);
+  CHECK(usual_off * 2 >= checked);
+  MESSAGE("paths checked: ", checked, ", the usual rule's weight off by over 0.01 on ", usual_off);
 }
 
 TEST_CASE("guided_walks_and_mis_weights_agree_on_the_mixtures") {
