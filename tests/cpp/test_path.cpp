@@ -95,7 +95,8 @@ TEST_CASE("verify_accepts_the_walks_and_catches_tampering") {
 namespace {
 
 // The closed box with a mirror quad standing in it, so that paths have delta vertices; with
-// `lights`, also the emitters without a surface; `open_top` leaves out the box's top (y = 1).
+// `lights`, also the emitters without a surface; `open_top` leaves out the box's top (y = 1);
+// `quad`: the quad's BSDF, if not the mirror (glass: its back side is inside the glass).
 Scene box_with_mirror(std::vector<Emitter> lights = {}, bool open_top = false, Bsdf quad = Mirror{Color(0.9f)}) {
   std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
   std::vector<uint32_t> t = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
