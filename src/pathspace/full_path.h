@@ -19,23 +19,6 @@ namespace dualight {
 
 inline bool is_specular(const Vertex& v) { return v.type == VertexType::Surface && is_delta(v.material->bsdf); }
 
-// |cos| at both ends over distance squared; no cosine at the pinhole camera. To a vertex at
-// infinity: the cosine at the other end alone (no distance, no cosine at infinity).
-inline double geometry_term(const Vertex& a, const Vertex& b) {
-  if (a.at_infinity || b.at_infinity) {
-    const Vertex& v = a.at_infinity ? b : a;
-    return v.on_surface() ? std::abs(dot(v.n, direction(a, b))) : 1.0;
-  }
-  const Vec3 d = b.p - a.p;
-  const double dist2 = dot(d, d);
-  if (!(dist2 > 0.0)) return 0.0;
-  const Vec3 w = d / static_cast<float>(std::sqrt(dist2));
-  double g = 1.0 / dist2;
-  if (a.on_surface()) g *= std::abs(dot(a.n, w));
-  if (b.on_surface()) g *= std::abs(dot(b.n, w));
-  return g;
-}
-
 // The Dirac lobe a specular vertex uses between the directions to the camera side and to the
 // light side (world, unit): its BSDF's delta_lobe (bsdf_sample.h) in v's frame.
 DeltaLobe specular_lobe(const Vertex& v, const Vec3& to_eye, const Vec3& to_light);

@@ -39,7 +39,7 @@ float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& w
 // keeps the one-segment factors of its first segments, a -> a1 and b -> b1: its ratio across the
 // chain is the true one divided by
 //   chain_correction = G(a, a1) / G(b, b1) (eta_a / eta_b)^2
-// (G of one segment, without the cosine at a point), by which the product of ratios across the
+// (G of one segment: geometry_term, path.h), by which the product of ratios across the
 // chain is multiplied here. Under a glass sphere, where a1 is close to the floor point a and b1
 // far from the light point b, the usual rule gives the camera subpath that hits the light through
 // the sphere much of the weight the light tracer would take. `at(k)`: the chain in path order,
@@ -49,12 +49,6 @@ float chain_correction(const At& at, int m) {
   const Vertex& a = at(0);
   const Vertex& b = at(m + 1);
   if (a.at_infinity || b.at_infinity) return 1.f;
-  const auto g = [](const Vertex& end, const Vertex& next) {
-    const Vec3 d = next.p - end.p;
-    const float inv_dist2 = 1.f / dot(d, d);
-    const Vec3 w = d * std::sqrt(inv_dist2);
-    return abs_cos(end, w) * std::abs(dot(next.n, w)) * inv_dist2;
-  };
   float eta = 1.f;  // the IOR on b's side over a's
   for (int k = 1; k <= m; ++k) {
     const Vertex& v = at(k);
@@ -62,9 +56,9 @@ float chain_correction(const At& at, int m) {
     const Vec3 wo = frame.to_local(direction(v, at(k - 1))), wi = frame.to_local(direction(v, at(k + 1)));
     eta *= with_bsdf(v, [&](const Bsdf& bsdf) { return refraction_eta(bsdf, wo, wi); });
   }
-  const float g_b = g(b, at(m));
-  if (!(g_b > 0.f)) return 1.f;
-  return g(a, at(1)) / g_b / (eta * eta);
+  const double g_b = geometry_term(b, at(m));
+  if (!(g_b > 0.0)) return 1.f;
+  return static_cast<float>(geometry_term(a, at(1)) / g_b) / (eta * eta);
 }
 
 }  // namespace

@@ -171,6 +171,23 @@ inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& 
 // |cos| between v's normal and unit w, or 1 where v has no surface (camera, point emitter).
 inline float abs_cos(const Vertex& v, const Vec3& w) { return v.on_surface() ? std::abs(dot(v.n, w)) : 1.f; }
 
+// |cos| at both ends over distance squared; no cosine at the pinhole camera. To a vertex at
+// infinity: the cosine at the other end alone (no distance, no cosine at infinity).
+inline double geometry_term(const Vertex& a, const Vertex& b) {
+  if (a.at_infinity || b.at_infinity) {
+    const Vertex& v = a.at_infinity ? b : a;
+    return v.on_surface() ? std::abs(dot(v.n, direction(a, b))) : 1.0;
+  }
+  const Vec3 d = b.p - a.p;
+  const double dist2 = dot(d, d);
+  if (!(dist2 > 0.0)) return 0.0;
+  const Vec3 w = d / static_cast<float>(std::sqrt(dist2));
+  double g = 1.0 / dist2;
+  if (a.on_surface()) g *= std::abs(dot(a.n, w));
+  if (b.on_surface()) g *= std::abs(dot(b.n, w));
+  return g;
+}
+
 // Radiance vertex v emits towards `to` (0 when v is on no emitter); from infinity, along -v.n.
 inline Color emitted_towards(const Vertex& v, const Vec3& to) {
   if (v.emitter == nullptr) return Color(0.f);
