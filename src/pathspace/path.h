@@ -171,8 +171,9 @@ inline float solid_angle_to_area(float pdf_w, const Vertex& from, const Vertex& 
 // |cos| between v's normal and unit w, or 1 where v has no surface (camera, point emitter).
 inline float abs_cos(const Vertex& v, const Vec3& w) { return v.on_surface() ? std::abs(dot(v.n, w)) : 1.f; }
 
-// |cos| at both ends over distance squared; no cosine at the pinhole camera. To a vertex at
-// infinity: the cosine at the other end alone (no distance, no cosine at infinity).
+// |cos| at both ends over distance squared; no cosine where a vertex has no surface (the pinhole
+// camera, a point emitter). To a vertex at infinity: the cosine at the other end alone (no
+// distance, no cosine at infinity).
 inline double geometry_term(const Vertex& a, const Vertex& b) {
   if (a.at_infinity || b.at_infinity) {
     const Vertex& v = a.at_infinity ? b : a;
