@@ -490,6 +490,46 @@ TEST_CASE("mis_weights_sum_to_one_on_paths_ending_at_infinity") {
   }
 }
 
+TEST_CASE("mis_weights_through_a_mirror_to_infinity_follow_the_chains_true_densities") {
+  // A path camera -> a (diffuse) -> mirror -> the environment at infinity (the open-top box
+  // under a constant sky) is made by two strategies: the camera subpath leaving through the
+  // top (s = 0), with densities p_camera(a) and p_w(a) (a plane mirror turns directions
+  // without magnifying them), and the light subpath entering from the sky's disk and seen by
+  // the camera (s = 3), with densities p(w) for the direction and p_disk |cos a| for a (the
+  // beam reaches a at that angle). Control: the usual rule's ratio is the true one times
+  // d^2(a, mirror) / |cos a|, which gives other weights on most of these paths.
+  const Scene scene = box_with_mirror({Emitter{ConstantEmitter{Color(0.7f), {}}}}, true);
+  const WalkLimits limits{3, 1 << 30};
+  TraceCounters rays;
+  Path path;
+  size_t checked = 0, usual_off = 0;
+  for (uint32_t i = 0; i < 200000 && checked < 200; ++i) {
+    IndependentSampler sampler(13, 1, i);
+    const Point2 u = sampler.next_2d();
+    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+    if (path.size() < 4 || path[1].delta || !path[2].delta || !path[3].at_infinity) continue;
+    const Path full(path.begin(), path.begin() + 4);
+    const StrategySum r = strategy_weight_sum(scene, full, MisHeuristic::Power);
+    const Vertex &a = full[1], &m = full[2];
+    Vertex sky = full[3];
+    sky.type = VertexType::Light;
+    const Vec3 am = m.p - a.p;
+    const float cos_a = std::abs(dot(a.n, normalize(am)));
+    const float pw_a = surface_pdf_w(a, direction(a, full[0]), normalize(am), TransportMode::Radiance);
+    const float p_camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a;
+    const float p_light = pdf_light_origin(scene, sky) * emission_pdf_w(sky, direction(sky, m)) * cos_a;
+    const float expected = p_camera * p_camera / (p_camera * p_camera + p_light * p_light);
+    CHECK_NEAR(r.weight[0], expected, 1e-4f);
+    CHECK_NEAR(r.weight[0] + r.weight[3], 1.f, 1e-5f);
+    const float usual = p_light / p_camera * dot(am, am) / cos_a;
+    usual_off += std::abs(1.f / (1.f + usual * usual) - expected) > 1e-2f;
+    ++checked;
+  }
+  CHECK(checked >= 50);
+  CHECK(usual_off * 4 >= checked);
+  MESSAGE("paths checked: ", checked, ", the usual rule's weight off by over 0.01 on ", usual_off);
+}
+
 TEST_CASE("path_tracer_lanes_render_the_scalar_image_bit_for_bit") {
   // Each build of the lanes the CPU runs, both samplers, odd image sizes (rows of fewer than
   // sixteen pixels), one and two threads: the scalar tracer's means, variances and counters.
