@@ -248,6 +248,47 @@ TEST_CASE("mis_weights_sum_to_one_through_glass") {
   MESSAGE("paths: ", c.checked, ", with a delta vertex: ", c.with_delta, ", refracted: ", c.refracted);
 }
 
+namespace {
+
+// Densities of a path camera -> a -> mirror -> end under its two strategies, s = 0 and s = 3,
+// and the usual rule's ratio of the second to the first.
+struct MirrorPathDensities {
+  float camera = 0.f, light = 0.f, usual_ratio = 0.f;
+};
+
+struct MirrorChecks {
+  size_t checked = 0, usual_off = 0;
+};
+
+// Paths camera -> a (diffuse) -> mirror -> end (`ends(end, mirror)`) made by camera subpaths of
+// `scene`, up to 200: mis_weight's two weights must be the power heuristic's of the densities
+// `densities(full)` gives, and sum to 1; counts where the usual rule's weight is off by over 0.01.
+template <class Ends, class Densities>
+MirrorChecks check_weights_through_the_mirror(const Scene& scene, uint64_t seed, const Ends& ends,
+                                              const Densities& densities) {
+  const WalkLimits limits{3, 1 << 30};
+  TraceCounters rays;
+  Path path;
+  MirrorChecks out;
+  for (uint32_t i = 0; i < 200000 && out.checked < 200; ++i) {
+    IndependentSampler sampler(seed, 1, i);
+    const Point2 u = sampler.next_2d();
+    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
+    if (path.size() < 4 || path[1].delta || !path[2].delta || !ends(path[3], path[2])) continue;
+    const Path full(path.begin(), path.begin() + 4);
+    const StrategySum r = strategy_weight_sum(scene, full, MisHeuristic::Power);
+    const MirrorPathDensities p = densities(full);
+    const float expected = p.camera * p.camera / (p.camera * p.camera + p.light * p.light);
+    CHECK_NEAR(r.weight[0], expected, 1e-4f);
+    CHECK_NEAR(r.weight[0] + r.weight[3], 1.f, 1e-5f);
+    out.usual_off += std::abs(1.f / (1.f + p.usual_ratio * p.usual_ratio) - expected) > 1e-2f;
+    ++out.checked;
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("mis_weights_through_a_mirror_follow_the_chains_true_densities") {
   // A path camera -> a (diffuse) -> mirror -> b (on the emitter) is made by two strategies: the
   // camera subpath hitting the emitter (s = 0) and the light subpath seen by the camera (s = 3).
@@ -257,18 +298,10 @@ TEST_CASE("mis_weights_through_a_mirror_follow_the_chains_true_densities") {
   // Control: the usual rule (each end's density through its own first segment) gives other
   // weights on most of these paths.
   const Scene scene = box_with_mirror();
-  const WalkLimits limits{3, 1 << 30};
-  TraceCounters rays;
-  Path path;
-  size_t checked = 0, usual_off = 0;
-  for (uint32_t i = 0; i < 200000 && checked < 200; ++i) {
-    IndependentSampler sampler(7, 1, i);
-    const Point2 u = sampler.next_2d();
-    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
-    if (path.size() < 4 || path[1].delta || !path[2].delta || !path[3].is_emitter()) continue;
-    if (dot(path[3].n, path[2].p - path[3].p) <= 0.f) continue;
-    const Path full(path.begin(), path.begin() + 4);
-    const StrategySum r = strategy_weight_sum(scene, full, MisHeuristic::Power);
+  const auto on_emitter = [](const Vertex& end, const Vertex& m) {
+    return end.is_emitter() && dot(end.n, m.p - end.p) > 0.f;
+  };
+  const MirrorChecks c = check_weights_through_the_mirror(scene, 7, on_emitter, [&](const Path& full) {
     const Vertex &a = full[1], &m = full[2];
     Vertex b = full[3];
     b.type = VertexType::Light;
@@ -276,21 +309,18 @@ TEST_CASE("mis_weights_through_a_mirror_follow_the_chains_true_densities") {
     const float D = length(am) + length(bm);
     const float pw_a = surface_pdf_w(a, direction(a, full[0]), normalize(am), TransportMode::Radiance);
     const float pw_b = emission_pdf_w(b, normalize(bm));
-    const float p_camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a * std::abs(dot(b.n, normalize(bm))) / (D * D);
-    const float p_light = pdf_light_origin(scene, b) * pw_b * std::abs(dot(a.n, normalize(am))) / (D * D);
-    const float expected = p_camera * p_camera / (p_camera * p_camera + p_light * p_light);
-    CHECK_NEAR(r.weight[0], expected, 1e-4f);
-    CHECK_NEAR(r.weight[0] + r.weight[3], 1.f, 1e-5f);
+    MirrorPathDensities p;
+    p.camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a * std::abs(dot(b.n, normalize(bm))) / (D * D);
+    p.light = pdf_light_origin(scene, b) * pw_b * std::abs(dot(a.n, normalize(am))) / (D * D);
     // The usual rule's ratio: the two first segments' one-segment densities at the mirror.
     const float cos_m_a = std::abs(dot(m.n, normalize(am))), cos_m_b = std::abs(dot(m.n, normalize(bm)));
-    const float usual = (pdf_light_origin(scene, b) * pw_b * cos_m_b / dot(bm, bm)) /
-                        (pdf_area(kCamera, full[0], nullptr, a) * pw_a * cos_m_a / dot(am, am));
-    usual_off += std::abs(1.f / (1.f + usual * usual) - expected) > 1e-2f;
-    ++checked;
-  }
-  CHECK(checked >= 50);
-  CHECK(usual_off * 2 >= checked);
-  MESSAGE("paths checked: ", checked, ", the usual rule's weight off by over 0.01 on ", usual_off);
+    p.usual_ratio = (pdf_light_origin(scene, b) * pw_b * cos_m_b / dot(bm, bm)) /
+                    (pdf_area(kCamera, full[0], nullptr, a) * pw_a * cos_m_a / dot(am, am));
+    return p;
+  });
+  CHECK(c.checked >= 50);
+  CHECK(c.usual_off * 2 >= c.checked);
+  MESSAGE("paths checked: ", c.checked, ", the usual rule's weight off by over 0.01 on ", c.usual_off);
 }
 
 TEST_CASE("guided_walks_and_mis_weights_agree_on_the_mixtures") {
@@ -497,37 +527,25 @@ TEST_CASE("mis_weights_through_a_mirror_to_infinity_follow_the_chains_true_densi
   // without magnifying them), and the light subpath entering from the sky's disk and seen by
   // the camera (s = 3), with densities p(w) for the direction and p_disk |cos a| for a (the
   // beam reaches a at that angle). Control: the usual rule's ratio is the true one times
-  // d^2(a, mirror) / |cos a|, which gives other weights on most of these paths.
+  // d^2(a, mirror) / |cos a|, which gives other weights on many of these paths.
   const Scene scene = box_with_mirror({Emitter{ConstantEmitter{Color(0.7f), {}}}}, true);
-  const WalkLimits limits{3, 1 << 30};
-  TraceCounters rays;
-  Path path;
-  size_t checked = 0, usual_off = 0;
-  for (uint32_t i = 0; i < 200000 && checked < 200; ++i) {
-    IndependentSampler sampler(13, 1, i);
-    const Point2 u = sampler.next_2d();
-    camera_subpath(scene, kCamera, u.u * 32.f, u.v * 24.f, sampler, limits, path, rays);
-    if (path.size() < 4 || path[1].delta || !path[2].delta || !path[3].at_infinity) continue;
-    const Path full(path.begin(), path.begin() + 4);
-    const StrategySum r = strategy_weight_sum(scene, full, MisHeuristic::Power);
+  const auto at_infinity = [](const Vertex& end, const Vertex&) { return end.at_infinity; };
+  const MirrorChecks c = check_weights_through_the_mirror(scene, 13, at_infinity, [&](const Path& full) {
     const Vertex &a = full[1], &m = full[2];
     Vertex sky = full[3];
     sky.type = VertexType::Light;
     const Vec3 am = m.p - a.p;
     const float cos_a = std::abs(dot(a.n, normalize(am)));
     const float pw_a = surface_pdf_w(a, direction(a, full[0]), normalize(am), TransportMode::Radiance);
-    const float p_camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a;
-    const float p_light = pdf_light_origin(scene, sky) * emission_pdf_w(sky, direction(sky, m)) * cos_a;
-    const float expected = p_camera * p_camera / (p_camera * p_camera + p_light * p_light);
-    CHECK_NEAR(r.weight[0], expected, 1e-4f);
-    CHECK_NEAR(r.weight[0] + r.weight[3], 1.f, 1e-5f);
-    const float usual = p_light / p_camera * dot(am, am) / cos_a;
-    usual_off += std::abs(1.f / (1.f + usual * usual) - expected) > 1e-2f;
-    ++checked;
-  }
-  CHECK(checked >= 50);
-  CHECK(usual_off * 4 >= checked);
-  MESSAGE("paths checked: ", checked, ", the usual rule's weight off by over 0.01 on ", usual_off);
+    MirrorPathDensities p;
+    p.camera = pdf_area(kCamera, full[0], nullptr, a) * pw_a;
+    p.light = pdf_light_origin(scene, sky) * emission_pdf_w(sky, direction(sky, m)) * cos_a;
+    p.usual_ratio = p.light / p.camera * dot(am, am) / cos_a;
+    return p;
+  });
+  CHECK(c.checked >= 50);
+  CHECK(c.usual_off * 4 >= c.checked);
+  MESSAGE("paths checked: ", c.checked, ", the usual rule's weight off by over 0.01 on ", c.usual_off);
 }
 
 TEST_CASE("path_tracer_lanes_render_the_scalar_image_bit_for_bit") {
