@@ -42,14 +42,14 @@ float pdf_area_along(const PinholeCamera& camera, const Vertex& v, const Vec3& w
 // (G of one segment: geometry_term, path.h), by which the product of ratios across the
 // chain is multiplied here. Under a glass sphere, where a1 is close to the floor point a and b1
 // far from the light point b, the usual rule gives the camera subpath that hits the light through
-// the sphere much of the weight the light tracer would take. `at(k)`: the chain in path order,
-// a = at(0) .. b = at(m + 1).
+// the sphere much of the weight the light tracer would take.
 // b at infinity (an environment's direction): the chain maps a direction leaving a to the
 // direction w at infinity with some angular magnification M = |d omega_a / d omega_inf|, so
 // the density of b is p_w(a) M; b's light subpath samples w, then a point on a disk across it
 // (area density p_disk), and a's density is p(w) p_disk (eta_a / eta_b)^2 |cos a| M (the
 // beam's etendue). M cancels in the ratio as G_c does, and the usual rule, whose first segment
 // from infinity has only b1's cosine (geometry_term), errs by the same factor.
+// `at(k)`: the chain in path order, a = at(0) .. b = at(m + 1), m >= 1 delta vertices between.
 template <class At>
 float chain_correction(const At& at, int m) {
   const Vertex& a = at(0);
