@@ -73,6 +73,7 @@ bench-topics: install
 	$(PY) benchmarks/bench_radiosity.py
 	$(PY) benchmarks/bench_hierarchical.py
 	$(PY) benchmarks/bench_bdpt.py
+	$(PY) benchmarks/bench_bdpt_rr.py
 	$(PY) benchmarks/bench_mlt.py
 
 # Regenerates python/dualight/_core.pyi from the built extension (commit the result; the

@@ -1,0 +1,121 @@
+"""BDPT's equal-time efficiency against the depth where Russian roulette starts (``rr_depth``).
+
+Every vertex of a camera subpath connects to every vertex of its light subpath, so BDPT's
+connections multiply with the two subpaths' lengths, and a roulette that starts earlier can save
+more time than it adds noise. This renders ``bench_bdpt``'s scenes (the Cornell box, its caustic
+variant and Veach's door; 64x64, ``max_depth`` 8) with BDPT for a fixed time at each
+``rr_depth``, the depths interleaved seed by seed, and reports efficiency 1 / (relMSE x seconds)
+against the tests' Mitsuba references (their own noise removed, as in ``bench_bdpt``).
+
+Writes ``benchmarks/results/bench_bdpt_rr.json``.
+
+    python benchmarks/bench_bdpt_rr.py                       # 8 s, seeds 1-4, rr_depth 5, 3, 2
+    python benchmarks/bench_bdpt_rr.py --budget 1 --seeds 1  # a smoke run
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import dualight
+from dualight import metrics
+
+HERE = Path(__file__).resolve().parent
+RESULTS = HERE / "results"
+sys.path[:0] = [str(HERE)]
+from bench_bdpt import REFERENCES, SCENES, errors, load_reference  # noqa: E402
+
+
+def efficiency(
+    scene: dualight.Scene,
+    ref: np.ndarray,
+    ref_var: np.ndarray,
+    mask: np.ndarray,
+    budget: float,
+    rr_depth: int,
+    seed: int,
+    max_depth: int,
+    threads: int | None,
+) -> dict[str, Any]:
+    """One BDPT render of ``budget`` seconds: its spp, seconds, relMSE and efficiency."""
+    start = time.perf_counter()
+    image = dualight.render(
+        scene,
+        "bdpt",
+        spp=None,
+        time_limit=budget,
+        max_depth=max_depth,
+        rr_depth=rr_depth,
+        seed=seed,
+        threads=threads,
+        progress=False,
+    )
+    seconds = time.perf_counter() - start
+    relmse = errors(np.asarray(image), ref, ref_var, mask)["relmse"]
+    return {
+        "rr_depth": rr_depth,
+        "seed": seed,
+        "spp": image.stats["spp"],
+        "seconds": seconds,
+        "relmse": relmse,
+        "efficiency": 1.0 / (relmse * seconds),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--budget", type=float, default=8.0, help="seconds per render")
+    parser.add_argument("--seeds", type=str, default="1,2,3,4")
+    parser.add_argument("--rr-depths", type=str, default="5,3,2")
+    parser.add_argument("--threads", type=int, default=None, help="default: every core")
+    args = parser.parse_args()
+    seeds = [int(s) for s in args.seeds.split(",")]
+    depths = [int(d) for d in args.rr_depths.split(",")]
+    summary: dict[str, Any] = {
+        "machine": {"cpu_count": os.cpu_count(), "platform": platform.platform()},
+        "budget_seconds": args.budget,
+        "threads": args.threads,
+        "seeds": seeds,
+        "rr_depths": depths,
+        "scenes": {},
+    }
+    for name, (ref_name, build) in SCENES.items():
+        if not (REFERENCES / f"{ref_name}_mean.exr").exists():
+            print(f"skipping {name}: no reference {ref_name}")
+            continue
+        scene = build()
+        ref, ref_var, info = load_reference(ref_name)
+        max_depth = int(info["max_depth"])
+        mask = metrics.renderable_by_light_tracing(scene)
+        dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
+        runs = [
+            efficiency(scene, ref, ref_var, mask, args.budget, d, seed, max_depth, args.threads)
+            for seed in seeds
+            for d in depths
+        ]
+        means = {
+            d: float(np.mean([r["efficiency"] for r in runs if r["rr_depth"] == d])) for d in depths
+        }
+        summary["scenes"][name] = {"runs": runs, "mean_efficiency": means}
+        for d in depths:
+            print(
+                f"{name:>9} rr_depth {d}: efficiency {means[d]:8.2f} "
+                f"({means[d] / means[depths[0]]:.2f}x rr_depth {depths[0]})",
+                flush=True,
+            )
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    (RESULTS / "bench_bdpt_rr.json").write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"wrote {RESULTS / 'bench_bdpt_rr.json'}")
+
+
+if __name__ == "__main__":
+    main()
