@@ -28,7 +28,8 @@ import os
 import platform
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -70,6 +71,34 @@ def load_reference(name: str) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
     mean = dualight.Image.load(REFERENCES / f"{name}_mean.exr")
     var = dualight.Image.load(REFERENCES / f"{name}_var.exr")
     return np.asarray(mean), np.asarray(var), mean.stats
+
+
+@dataclass
+class Prepared:
+    """A scene of SCENES with its stored reference (mean, variance, metadata) and the pixels
+    the light tracer can render; its BVH is built."""
+
+    name: str
+    reference: str
+    scene: dualight.Scene
+    mean: np.ndarray
+    variance: np.ndarray
+    info: dict[str, Any]
+    mask: np.ndarray
+
+
+def prepared_scenes() -> Iterator[Prepared]:
+    """Each scene of SCENES whose reference is stored (the others are skipped, saying so)."""
+    for name, (ref_name, build) in SCENES.items():
+        if not (REFERENCES / f"{ref_name}_mean.exr").exists():
+            print(f"skipping {name}: no reference {ref_name} (tests/references/make_references.py)")
+            continue
+        scene = build()
+        ref, ref_var, info = load_reference(ref_name)
+        mask = metrics.renderable_by_light_tracing(scene)
+        # One sample per pixel builds the BVH before any timed render.
+        dualight.render(scene, "path", spp=1, max_depth=int(info["max_depth"]), progress=False)
+        yield Prepared(name, ref_name, scene, ref, ref_var, info, mask)
 
 
 def errors(image: np.ndarray, ref: np.ndarray, ref_var: np.ndarray, mask: np.ndarray) -> dict:
@@ -123,15 +152,10 @@ def main() -> None:
         "budgets_seconds": budgets,
         "scenes": {},
     }
-    for name, (ref_name, build) in SCENES.items():
-        if not (REFERENCES / f"{ref_name}_mean.exr").exists():
-            print(f"skipping {name}: no reference {ref_name} (tests/references/make_references.py)")
-            continue
-        scene = build()
-        ref, ref_var, info = load_reference(ref_name)
+    for prepared in prepared_scenes():
+        name, ref_name, scene = prepared.name, prepared.reference, prepared.scene
+        ref, ref_var, info, mask = prepared.mean, prepared.variance, prepared.info, prepared.mask
         max_depth = int(info["max_depth"])
-        mask = metrics.renderable_by_light_tracing(scene)
-        dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
         runs: list[dict[str, Any]] = []
         for method in METHODS:
             for i, budget in enumerate(budgets):

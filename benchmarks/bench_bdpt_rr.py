@@ -27,40 +27,31 @@ from typing import Any
 import numpy as np
 
 import dualight
-from dualight import metrics
 
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 sys.path[:0] = [str(HERE)]
-from bench_bdpt import REFERENCES, SCENES, errors, load_reference  # noqa: E402
+from bench_bdpt import Prepared, errors, prepared_scenes  # noqa: E402
 
 
 def efficiency(
-    scene: dualight.Scene,
-    ref: np.ndarray,
-    ref_var: np.ndarray,
-    mask: np.ndarray,
-    budget: float,
-    rr_depth: int,
-    seed: int,
-    max_depth: int,
-    threads: int | None,
+    p: Prepared, budget: float, rr_depth: int, seed: int, threads: int | None
 ) -> dict[str, Any]:
     """One BDPT render of ``budget`` seconds: its spp, seconds, relMSE and efficiency."""
     start = time.perf_counter()
     image = dualight.render(
-        scene,
+        p.scene,
         "bdpt",
         spp=None,
         time_limit=budget,
-        max_depth=max_depth,
+        max_depth=int(p.info["max_depth"]),
         rr_depth=rr_depth,
         seed=seed,
         threads=threads,
         progress=False,
     )
     seconds = time.perf_counter() - start
-    relmse = errors(np.asarray(image), ref, ref_var, mask)["relmse"]
+    relmse = errors(np.asarray(image), p.mean, p.variance, p.mask)["relmse"]
     return {
         "rr_depth": rr_depth,
         "seed": seed,
@@ -88,27 +79,15 @@ def main() -> None:
         "rr_depths": depths,
         "scenes": {},
     }
-    for name, (ref_name, build) in SCENES.items():
-        if not (REFERENCES / f"{ref_name}_mean.exr").exists():
-            print(f"skipping {name}: no reference {ref_name}")
-            continue
-        scene = build()
-        ref, ref_var, info = load_reference(ref_name)
-        max_depth = int(info["max_depth"])
-        mask = metrics.renderable_by_light_tracing(scene)
-        dualight.render(scene, "path", spp=1, max_depth=max_depth, progress=False)  # BVH built
-        runs = [
-            efficiency(scene, ref, ref_var, mask, args.budget, d, seed, max_depth, args.threads)
-            for seed in seeds
-            for d in depths
-        ]
+    for p in prepared_scenes():
+        runs = [efficiency(p, args.budget, d, seed, args.threads) for seed in seeds for d in depths]
         means = {
             d: float(np.mean([r["efficiency"] for r in runs if r["rr_depth"] == d])) for d in depths
         }
-        summary["scenes"][name] = {"runs": runs, "mean_efficiency": means}
+        summary["scenes"][p.name] = {"runs": runs, "mean_efficiency": means}
         for d in depths:
             print(
-                f"{name:>9} rr_depth {d}: efficiency {means[d]:8.2f} "
+                f"{p.name:>9} rr_depth {d}: efficiency {means[d]:8.2f} "
                 f"({means[d] / means[depths[0]]:.2f}x rr_depth {depths[0]})",
                 flush=True,
             )
