@@ -7,10 +7,10 @@ variant and Veach's door; 64x64, ``max_depth`` 8) with BDPT for a fixed time at 
 ``rr_depth``, the depths interleaved seed by seed, and reports efficiency 1 / (relMSE x seconds)
 against the tests' Mitsuba references (their own noise removed, as in ``bench_bdpt``).
 
-Writes ``benchmarks/results/bench_bdpt_rr.json``.
+Writes ``benchmarks/results/bench_bdpt_rr.json`` (or ``--out``).
 
-    python benchmarks/bench_bdpt_rr.py                       # 8 s, seeds 1-4, rr_depth 5, 3, 2
-    python benchmarks/bench_bdpt_rr.py --budget 1 --seeds 1  # a smoke run
+    python benchmarks/bench_bdpt_rr.py        # 8 s, seeds 1-4, rr_depth 5, 3, 2
+    python benchmarks/bench_bdpt_rr.py --budget 1 --seeds 1 --out /tmp/rr.json  # a smoke run
 """
 
 from __future__ import annotations
@@ -55,6 +55,7 @@ def efficiency(
     return {
         "rr_depth": rr_depth,
         "seed": seed,
+        "threads": image.stats["threads"],
         "spp": image.stats["spp"],
         "seconds": seconds,
         "relmse": relmse,
@@ -68,6 +69,7 @@ def main() -> None:
     parser.add_argument("--seeds", type=str, default="1,2,3,4")
     parser.add_argument("--rr-depths", type=str, default="5,3,2")
     parser.add_argument("--threads", type=int, default=None, help="default: every core")
+    parser.add_argument("--out", type=Path, default=RESULTS / "bench_bdpt_rr.json")
     args = parser.parse_args()
     seeds = [int(s) for s in args.seeds.split(",")]
     depths = [int(d) for d in args.rr_depths.split(",")]
@@ -91,9 +93,9 @@ def main() -> None:
                 f"({means[d] / means[depths[0]]:.2f}x rr_depth {depths[0]})",
                 flush=True,
             )
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    (RESULTS / "bench_bdpt_rr.json").write_text(json.dumps(summary, indent=2) + "\n")
-    print(f"wrote {RESULTS / 'bench_bdpt_rr.json'}")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":
