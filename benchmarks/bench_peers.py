@@ -128,6 +128,30 @@ def calibrate_mitsuba(mscene: Any, variant: str, budget: float) -> int:
         spp *= 2
 
 
+def cpu() -> dict[str, Any]:
+    """The CPU as /proc/cpuinfo names it (Linux; empty elsewhere), with the vector extensions
+    both renderers' Embree and dualight's lanes choose from, so that runs on different machines
+    can be told apart: their ratios differ."""
+    try:
+        lines = Path("/proc/cpuinfo").read_text().splitlines()
+    except OSError:
+        return {}
+    fields: dict[str, str] = {}
+    for line in lines:
+        key, sep, value = line.partition(":")
+        if not sep:
+            break  # the first processor's fields end at a blank line
+        fields.setdefault(key.strip(), value.strip())
+    flags = fields.get("flags", "").split()
+    wanted = ("avx2", "avx512f", "avx512_fp16", "amx_tile")
+    return {
+        "model_name": fields.get("model name", ""),
+        "family_model_stepping": [fields.get(k, "") for k in ("cpu family", "model", "stepping")],
+        "mhz": fields.get("cpu MHz", ""),
+        "extensions": [f for f in wanted if f in flags],
+    }
+
+
 def set_threads(threads: int) -> None:
     """Mitsuba's (Dr.Jit's) thread pool; dualight takes ``threads`` per render."""
     import drjit as dr
@@ -234,6 +258,7 @@ def main() -> None:
     summary = {
         "environment": {
             "cpu_count": os.cpu_count(),
+            "cpu": cpu(),
             "platform": platform.platform(),
             "python": platform.python_version(),
             "mitsuba": mi.__version__,
