@@ -108,7 +108,10 @@ def turn(process: subprocess.Popen[str], scene: str, spp: int, seed: int) -> flo
     assert process.stdin is not None and process.stdout is not None
     process.stdin.write(f"{scene} {spp} {seed}\n")
     process.stdin.flush()
-    return float(process.stdout.readline())
+    line = process.stdout.readline()
+    if not line:
+        raise SystemExit(f"a worker ended while rendering {scene} (its error is above)")
+    return float(line)
 
 
 def main() -> None:
@@ -139,6 +142,14 @@ def main() -> None:
             raise SystemExit(f"unknown scene {name!r}; choose from {', '.join(SCENES)}")
     if args.spp < 1 or args.turns < 2:
         raise SystemExit("--spp must be >= 1 and --turns >= 2")
+    try:
+        options = json.loads(args.options)
+    except json.JSONDecodeError as e:
+        raise SystemExit(f"--options is not JSON: {e}") from None
+    if not isinstance(options, dict):
+        raise SystemExit("--options must be a JSON object of render() keywords")
+    if not hasattr(os, "sched_setaffinity"):
+        raise SystemExit("pinning both workers to one core needs os.sched_setaffinity (Linux)")
 
     builds = {
         "a": start_worker(args.a, args.env_a, args),
@@ -179,7 +190,7 @@ def main() -> None:
             "env_a": args.env_a,
             "env_b": args.env_b,
             "method": args.method,
-            "options": json.loads(args.options),
+            "options": options,
             "spp": args.spp,
             "turns": args.turns,
             "summary": summary,
