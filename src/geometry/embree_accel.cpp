@@ -139,16 +139,20 @@ void fill_lanes(const RayPacket& rays, int first, RayK& r) {
 
 // Embree's K-wide closest-hit and occlusion queries (K = 16 or 8).
 template <int K, class RayHitK>
-void rtc_intersect(const int* valid, RTCScene scene, RayHitK* rh) {
+void rtc_intersect(const int* valid, RTCScene scene, RayHitK* rh, Coherence coherence) {
 #if DUALIGHT_EMBREE4
+  RTCIntersectArguments args;
+  rtcInitIntersectArguments(&args);
+  if (coherence == Coherence::kCoherent) args.flags = RTC_RAY_QUERY_FLAG_COHERENT;
   if constexpr (K == 16) {
-    rtcIntersect16(valid, scene, rh);
+    rtcIntersect16(valid, scene, rh, &args);
   } else {
-    rtcIntersect8(valid, scene, rh);
+    rtcIntersect8(valid, scene, rh, &args);
   }
 #else
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
+  if (coherence == Coherence::kCoherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   if constexpr (K == 16) {
     rtcIntersect16(valid, scene, &ctx, rh);
   } else {
@@ -183,7 +187,8 @@ bool any_valid(const int* valid, int n) {
 
 // The closest hits of lanes [first, first + K) (valid: the whole packet's mask).
 template <class RayHitK, int K>
-void intersect_lanes(RTCScene scene, const RayPacket& rays, const int* valid, int first, HitPacket& hits) {
+void intersect_lanes(RTCScene scene, const RayPacket& rays, const int* valid, int first, HitPacket& hits,
+                     Coherence coherence) {
   if (!any_valid(valid + first, K)) return;
   alignas(64) RayHitK rh;
   fill_lanes<decltype(rh.ray), K>(rays, first, rh.ray);
@@ -191,7 +196,7 @@ void intersect_lanes(RTCScene scene, const RayPacket& rays, const int* valid, in
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtc_intersect<K>(valid + first, scene, &rh);
+  rtc_intersect<K>(valid + first, scene, &rh, coherence);
   for (int i = 0; i < K; ++i) {
     if (valid[first + i] == 0 || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
     hits.t[first + i] = rh.ray.tfar[i];
@@ -322,7 +327,7 @@ bool EmbreeAccel::occluded(const Ray& ray, const HitFilter* filter) const {
   return r.tfar < 0.f;
 }
 
-void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
+void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits, Coherence coherence) const {
   for (uint32_t& p : hits.prim) p = RayHit::kNoHit;
   if (impl_->packet_width == 1) {
     for (int i = 0; i < RayPacket::kLanes; ++i) {
@@ -335,10 +340,10 @@ void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits) const {
   alignas(64) int valid[RayPacket::kLanes];
   if (!packet_valid(rays, valid)) return;
   if (impl_->packet_width == 16) {
-    intersect_lanes<RTCRayHit16, 16>(impl_->scene.get(), rays, valid, 0, hits);
+    intersect_lanes<RTCRayHit16, 16>(impl_->scene.get(), rays, valid, 0, hits, coherence);
   } else {
     for (int first = 0; first < RayPacket::kLanes; first += 8) {
-      intersect_lanes<RTCRayHit8, 8>(impl_->scene.get(), rays, valid, first, hits);
+      intersect_lanes<RTCRayHit8, 8>(impl_->scene.get(), rays, valid, first, hits, coherence);
     }
   }
 }
@@ -403,14 +408,14 @@ void EmbreeAccel::occluded(const int32_t* active, RayHit16& p, const HitFilter* 
   }
 }
 
-void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
+void EmbreeAccel::intersect(const int32_t* active, RayHit16& p, Coherence coherence) const {
   constexpr int kLanes = RayHit16::kLanes;
   static_assert(kLanes == RayPacket::kLanes);
   alignas(64) int valid[kLanes];
   prepare_lanes(active, p, valid);
   if constexpr (same_layout()) {
     if (impl_->packet_width == 16) {
-      rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p));
+      rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p), coherence);
       for (int i = 0; i < kLanes; ++i) {
         if (valid[i] == 0 || p.geom[i] == RTC_INVALID_GEOMETRY_ID) p.prim[i] = RayHit::kNoHit;
       }
@@ -418,7 +423,7 @@ void EmbreeAccel::intersect(const int32_t* active, RayHit16& p) const {
     }
   }
   HitPacket hits;
-  intersect(packet_rays(active, p), hits);
+  intersect(packet_rays(active, p), hits, coherence);
   for (int i = 0; i < kLanes; ++i) {
     p.prim[i] = hits.prim[i];
     if (hits.prim[i] == RayHit::kNoHit) continue;

@@ -59,6 +59,11 @@ struct alignas(64) RayHit16 {
   uint32_t prim[kLanes], geom[kLanes], inst[kLanes];
 };
 
+// How the rays of a packet relate: incoherent (paths' later segments, in every direction), or
+// coherent (camera rays through neighbouring pixels), which Embree traces by its packets'
+// common frustum instead of ray by ray. Both find the same hits.
+enum class Coherence { kIncoherent, kCoherent };
+
 class EmbreeAccel {
  public:
   // positions: 3 floats per vertex; triangles: 3 indices per triangle. Copied into Embree buffers.
@@ -79,12 +84,12 @@ class EmbreeAccel {
   bool occluded(const Ray& ray, const HitFilter* filter = nullptr) const;
   // The same for packets: hits.prim[i] etc. as intersect(rays.ray(i)); blocked[i] (1 or 0) as
   // occluded(rays.ray(i), filters[i]) (filters[i] may be null). Inactive lanes miss and are not blocked.
-  void intersect(const RayPacket& rays, HitPacket& hits) const;
+  void intersect(const RayPacket& rays, HitPacket& hits, Coherence coherence = Coherence::kIncoherent) const;
   void occluded(const RayPacket& rays, const HitFilter* const* filters, int32_t* blocked) const;
   // The same as intersect(RayPacket) in place, for the lanes where active[i] != 0; and as
   // occluded(RayPacket): where lane i's ray is blocked, or Embree would not take it (counted as
   // blocked), tmax[i] becomes negative.
-  void intersect(const int32_t* active, RayHit16& packet) const;
+  void intersect(const int32_t* active, RayHit16& packet, Coherence coherence = Coherence::kIncoherent) const;
   void occluded(const int32_t* active, RayHit16& packet, const HitFilter* const* filters = nullptr) const;
 
  private:

@@ -200,10 +200,10 @@ void Scene::intersect(const RayPacket& rays, HitPacket& hits) const {
   }
 }
 
-void Scene::intersect(const int32_t* active, RayHit16& p) const {
+void Scene::intersect(const int32_t* active, RayHit16& p, Coherence coherence) const {
   alignas(64) float tmax[RayHit16::kLanes];  // the rays' own, for past_start_plane
   std::memcpy(tmax, p.tmax, sizeof tmax);
-  accel_->intersect(active, p);
+  accel_->intersect(active, p, coherence);
   for (int i = 0; i < RayHit16::kLanes; ++i) {
     if (p.prim[i] == RayHit::kNoHit || p.tmax[i] != 0.f) continue;
     // Rare: as intersect() below.

@@ -188,19 +188,28 @@ inline void add_constant_environment_seen(const PathLanesScene& ps, LanePaths& p
   paths.L = select(escaped, paths.L + C, paths.L);
 }
 
-// Scene::intersect for the active lanes: those that find nothing end, seeing the environment
-// where the scene has one (environment_seen: lane-wide for a constant one, else by the scalar
-// code).
-inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePaths& paths, TraceCounters& counters) {
+// The lanes whose ray's hit is known already (their camera rays', CameraRays), and that hit.
+struct KnownHits {
+  vi lanes = splat_i(0);
+  alignas(64) float t[kLanes] = {}, u[kLanes] = {}, v[kLanes] = {};
+  alignas(64) int32_t prim[kLanes] = {};
+};
+
+// Scene::intersect for the active lanes (but those whose hit is `known`): those that find
+// nothing end, seeing the environment where the scene has one (environment_seen: lane-wide for
+// a constant one, else by the scalar code).
+inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, const KnownHits& known, LanePaths& paths,
+                            TraceCounters& counters) {
   RayHit16 packet;
   if constexpr (kLanes < RayHit16::kLanes) packet = RayHit16{};
   alignas(64) int32_t active[RayHit16::kLanes] = {};
   store_rays(packet, r.o, r.d, r.tmin, r.tmax);
-  store(active, paths.active);
-  ps.scene->intersect(active, packet);
+  const vi trace = paths.active & ~known.lanes;
+  store(active, trace);
+  if (any(trace)) ps.scene->intersect(active, packet);
   counters.rays += count(paths.active);
   LaneVertex v;
-  v.prim = load(reinterpret_cast<const int32_t*>(packet.prim));
+  v.prim = select(known.lanes, load(known.prim), load(reinterpret_cast<const int32_t*>(packet.prim)));
   const vi escaped = paths.active & (v.prim == -1);
   if (ps.constant_environment >= 0 && any(escaped)) {
     add_constant_environment_seen(ps, paths, escaped);
@@ -213,7 +222,9 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, LanePat
   paths.active &= ~escaped;
   const LaneTriangle* tri = ps.triangles.data();
   v.emitter = select(paths.active, gather_int(tri, v.prim, paths.active, offsetof(LaneTriangle, emitter)), splat_i(-1));
-  v.t = load(packet.tmax), v.b1 = load(packet.u), v.b2 = load(packet.v);
+  v.t = select(known.lanes, load(known.t), load(packet.tmax));
+  v.b1 = select(known.lanes, load(known.u), load(packet.u));
+  v.b2 = select(known.lanes, load(known.v), load(packet.v));
   v.p = barycentric_point(tri, v.prim, paths.active, v.b1, v.b2);
   v.n = gather3(tri, v.prim, paths.active, offsetof(LaneTriangle, n));
   v.ns = v.n;
@@ -668,6 +679,7 @@ void leave(const PathLanesScene& ps, const LaneVertex& v, const ScalarBsdfs& b, 
 template <class Sampler>
 struct LaneState {
   LaneRays rays{};
+  KnownHits known;
   LanePaths paths{splat_i(0), splat(Vec3(1.f)), splat(Vec3(0.f)), splat(0.f), splat_i(-1), splat(1.f)};
   vi depth = splat_i(1);  // the vertex the next ray finds is the path's depth-th
   int32_t sample[kLanes];
@@ -685,29 +697,75 @@ struct LaneBatch {
   size_t n, next;
 };
 
+// Camera rays traced ahead of the lanes that take their samples, kLanes at a time. A batch's
+// consecutive samples are one pixel's (pixel_driver.h, render_tile), so their rays leave the
+// camera through one pixel, or a few neighbouring ones: a coherent packet, which Embree traces
+// by the packet's frustum (Coherence::kCoherent) instead of ray by ray, as Mitsuba 3's LLVM
+// variant traces its camera rays. Mixed into the lanes' packets of later segments, they went ray
+// by ray like those. The same hits, so the same bits. (Packets of 16 neighbouring pixels instead
+// of one pixel's samples gained less on the Cornell box and the door at 64x64, and lost 3 % on
+// the caustic box, whose finely tessellated sphere fills much of such a frustum.)
+template <class Sampler>
+struct CameraRays {
+  RayHit16 packet{};  // the rays, and after tracing their hits (lanes from kLanes on unused)
+  alignas(64) float tmax[kLanes] = {};  // the rays' own
+  int32_t sample[kLanes];
+  std::optional<Sampler> samplers[kLanes];
+  int size = 0, next = 0;
+};
+
+// The batch's next (up to) kLanes samples started (trace_path's start: sampler, film position,
+// camera ray) and their camera rays traced, into `q`.
+template <class Sampler>
+[[gnu::noinline]]  // once per kLanes samples: out of trace_paths' flattened loop
+void trace_camera_rays(const PathLanesScene& ps, LaneBatch& batch, CameraRays<Sampler>& q) {
+  alignas(64) int32_t active[RayHit16::kLanes] = {};
+  q.size = q.next = 0;
+  for (; q.size < kLanes && batch.next < batch.n; ++q.size) {
+    const int k = q.size;
+    q.sample[k] = static_cast<int32_t>(batch.next);
+    const Point2 position = start_sample(batch.seed, batch.film_width, batch.samples[batch.next++], q.samplers[k]);
+    const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(position.u, position.v));
+    q.packet.ox[k] = r.o.x, q.packet.oy[k] = r.o.y, q.packet.oz[k] = r.o.z;
+    q.packet.dx[k] = r.d.x, q.packet.dy[k] = r.d.y, q.packet.dz[k] = r.d.z;
+    q.packet.tmin[k] = r.tmin, q.packet.tmax[k] = q.tmax[k] = r.tmax;
+    active[k] = -1;
+  }
+  if (q.size > 0) ps.scene->intersect(active, q.packet, Coherence::kCoherent);
+}
+
 // Path regeneration [Novák et al. 2010]: each lane whose path has ended writes its estimate,
 // and takes the batch's next sample (trace_path's start: its sampler, film position and camera
-// ray; a new path, extend_path's initial state). Returns whether any lane's path goes on.
+// ray, with the ray's hit, from `camera`; a new path, extend_path's initial state). Returns
+// whether any lane's path goes on.
 template <class Sampler>
-bool regenerate(const PathLanesScene& ps, LaneBatch& batch, LaneState<Sampler>& st, Color* values) {
+bool regenerate(const PathLanesScene& ps, LaneBatch& batch, CameraRays<Sampler>& camera, LaneState<Sampler>& st,
+                Color* values) {
   alignas(64) float o[3][kLanes], d[3][kLanes], tmin[kLanes], tmax[kLanes];
   store(o[0], st.rays.o.x), store(o[1], st.rays.o.y), store(o[2], st.rays.o.z);
   store(d[0], st.rays.d.x), store(d[1], st.rays.d.y), store(d[2], st.rays.d.z);
   store(tmin, st.rays.tmin), store(tmax, st.rays.tmax);
   alignas(64) int32_t fresh[kLanes] = {};
+  KnownHits& known = st.known;
   for (int i = 0; i < kLanes; ++i) {
     if (st.paths.active[i] != 0) continue;
     if (st.sample[i] >= 0) values[st.sample[i]] = Color(st.paths.L.x[i], st.paths.L.y[i], st.paths.L.z[i]);
     st.sample[i] = -1;
-    if (batch.next == batch.n) continue;
-    st.sample[i] = static_cast<int32_t>(batch.next);
-    const Point2 position = start_sample(batch.seed, batch.film_width, batch.samples[batch.next++], st.samplers[i]);
+    if (camera.next == camera.size) trace_camera_rays(ps, batch, camera);
+    if (camera.next == camera.size) continue;
+    const int k = camera.next++;
+    const RayHit16& c = camera.packet;
+    st.sample[i] = camera.sample[k];
+    st.samplers[i] = std::move(camera.samplers[k]);
     st.numbers.start(i, *st.samplers[i]);
-    const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(position.u, position.v));
-    for (int k = 0; k < 3; ++k) o[k][i] = r.o[k], d[k][i] = r.d[k];
-    tmin[i] = r.tmin, tmax[i] = r.tmax, fresh[i] = -1;
+    o[0][i] = c.ox[k], o[1][i] = c.oy[k], o[2][i] = c.oz[k];
+    d[0][i] = c.dx[k], d[1][i] = c.dy[k], d[2][i] = c.dz[k];
+    tmin[i] = c.tmin[k], tmax[i] = camera.tmax[k], fresh[i] = -1;
+    known.t[i] = c.tmax[k], known.u[i] = c.u[k], known.v[i] = c.v[k];
+    known.prim[i] = static_cast<int32_t>(c.prim[k]);
   }
   const vi start = load(fresh);
+  known.lanes = start;
   if (!any(start)) return any(st.paths.active);
   st.rays = {{load(o[0]), load(o[1]), load(o[2])}, {load(d[0]), load(d[1]), load(d[2])}, load(tmin), load(tmax)};
   LanePaths& p = st.paths;
@@ -726,7 +784,8 @@ bool regenerate(const PathLanesScene& ps, LaneBatch& batch, LaneState<Sampler>& 
 template <class Sampler>
 void bounce(const PathLanesScene& ps, LaneState<Sampler>& st, TraceCounters& counters) {
   LanePaths& paths = st.paths;
-  const LaneVertex v = intersect(ps, st.rays, paths, counters);
+  const LaneVertex v = intersect(ps, st.rays, st.known, paths, counters);
+  st.known.lanes = splat_i(0);
   const V3 wo = -st.rays.d;
   add_emission(ps, v, wo, paths);
   const int max_depth = ps.options->max_depth;
@@ -750,8 +809,9 @@ template <class Sampler>
     return;
   }
   LaneBatch batch{seed, film_width, samples, n, 0};
+  CameraRays<Sampler> camera;
   LaneState<Sampler> st;
-  while (regenerate(ps, batch, st, values)) bounce(ps, st, counters);
+  while (regenerate(ps, batch, camera, st, values)) bounce(ps, st, counters);
 }
 
 }  // namespace dualight::DUALIGHT_LANES_NS

@@ -134,9 +134,11 @@ void render_tile(Film& film, const PixelDriverOptions& opt, const TileRect& r, u
   }
 }
 
-// The same for a batch estimate: the same samples, in batches of up to kBatch (whole rows, in the
-// same order), their values added to the film in that order, so the sums are the same.
-// Cancellation is seen between batches.
+// The same for a batch estimate: the same samples, pixel by pixel (each pixel's by sample index)
+// in batches of up to kBatch, their values added to the film in that order, so every pixel adds
+// its samples in the same order and the image is the same. A pixel's samples in a row let the
+// path tracer's lanes trace their camera rays as coherent packets (path_lanes_kernel.h,
+// CameraRays). Cancellation is seen between batches.
 constexpr size_t kBatch = static_cast<size_t>(kTile) * kTile;
 template <class Sampler, class F>
 void render_tile(Film& film, const PixelDriverOptions&, const TileRect& r, uint32_t first, uint32_t count,
@@ -155,14 +157,15 @@ void render_tile(Film& film, const PixelDriverOptions&, const TileRect& r, uint3
     control.done.fetch_add(n, std::memory_order_relaxed);
     n = 0;
   };
-  const auto row = static_cast<size_t>(r.x1 - r.x0);
-  for (uint32_t s = first; s < first + count; ++s) {
-    for (int y = r.y0; y < r.y1; ++y) {
-      if (n + row > kBatch) {
-        flush();
-        if (control.cancelled()) return;
+  for (int y = r.y0; y < r.y1; ++y) {
+    for (int x = r.x0; x < r.x1; ++x) {
+      for (uint32_t s = first; s < first + count; ++s) {
+        if (n == kBatch) {
+          flush();
+          if (control.cancelled()) return;
+        }
+        batch[n++] = {x, y, s};
       }
-      for (int x = r.x0; x < r.x1; ++x) batch[n++] = {x, y, s};
     }
   }
   flush();
