@@ -206,7 +206,11 @@ inline LaneVertex intersect(const PathLanesScene& ps, const LaneRays& r, const K
   store_rays(packet, r.o, r.d, r.tmin, r.tmax);
   const vi trace = paths.active & ~known.lanes;
   store(active, trace);
-  if (any(trace)) ps.scene->intersect(active, packet);
+  if (any(trace)) {
+    ps.scene->intersect(active, packet);
+  } else {  // as the query leaves the lanes it does not trace: no hit
+    std::fill(std::begin(packet.prim), std::end(packet.prim), RayHit::kNoHit);
+  }
   counters.rays += count(paths.active);
   LaneVertex v;
   v.prim = select(known.lanes, load(known.prim), load(reinterpret_cast<const int32_t*>(packet.prim)));
