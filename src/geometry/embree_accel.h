@@ -60,8 +60,8 @@ struct alignas(64) RayHit16 {
 };
 
 // How the rays of a packet relate: incoherent (paths' later segments, in every direction), or
-// coherent (camera rays through neighbouring pixels), which Embree traces by its packets'
-// common frustum instead of ray by ray. Both find the same hits.
+// coherent (camera rays through one pixel or a few neighbouring ones), which Embree traces by
+// the packet's common frustum instead of ray by ray. Both find the same hits.
 enum class Coherence { kIncoherent, kCoherent };
 
 class EmbreeAccel {

@@ -189,7 +189,7 @@ class Scene {
   // hits as the RayHit behind intersect() for each active lane.
   void intersect(const RayPacket& rays, HitPacket& hits) const;
   // The same in place (EmbreeAccel's RayHit16), for the lanes where active[i] != 0; coherent
-  // packets (camera rays through neighbouring pixels) trace faster as such (EmbreeAccel).
+  // packets (camera rays through one pixel or a few) trace faster as such (EmbreeAccel).
   void intersect(const int32_t* active, RayHit16& packet, Coherence coherence = Coherence::kIncoherent) const;
   // The ends of a packet of visible() queries: lane i (where active[i] != 0) asks
   // visible(p0, n0, p1, target, origin) with o0 = shadow_origin(p0, n0, p1).
