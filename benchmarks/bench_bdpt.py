@@ -23,6 +23,7 @@ one panel per scene).
 from __future__ import annotations
 
 import argparse
+import ast
 import json
 import os
 import platform
@@ -87,18 +88,48 @@ class Prepared:
     mask: np.ndarray
 
 
+def _prepared(name: str, ref_name: str, build: Callable[[], dualight.Scene]) -> Prepared:
+    scene = build()
+    ref, ref_var, info = load_reference(ref_name)
+    mask = metrics.renderable_by_light_tracing(scene)
+    # One sample per pixel builds the BVH before any timed render.
+    dualight.render(scene, "path", spp=1, max_depth=int(info["max_depth"]), progress=False)
+    return Prepared(name, ref_name, scene, ref, ref_var, info, mask)
+
+
 def prepared_scenes() -> Iterator[Prepared]:
     """Each scene of SCENES whose reference is stored (the others are skipped, saying so)."""
     for name, (ref_name, build) in SCENES.items():
         if not (REFERENCES / f"{ref_name}_mean.exr").exists():
             print(f"skipping {name}: no reference {ref_name} (tests/references/make_references.py)")
             continue
-        scene = build()
-        ref, ref_var, info = load_reference(ref_name)
-        mask = metrics.renderable_by_light_tracing(scene)
-        # One sample per pixel builds the BVH before any timed render.
-        dualight.render(scene, "path", spp=1, max_depth=int(info["max_depth"]), progress=False)
-        yield Prepared(name, ref_name, scene, ref, ref_var, info, mask)
+        yield _prepared(name, ref_name, build)
+
+
+def scene_of_reference(expression: str) -> dualight.Scene:
+    """The scene a stored reference's metadata names (``"cornell_box(resolution=(64, 64))"``):
+    a call of a function of :mod:`dualight.scenes` with literal arguments, nothing else."""
+    call = ast.parse(expression, mode="eval").body
+    if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)):
+        raise ValueError(f"not a call of a dualight.scenes function: {expression!r}")
+    build = getattr(scenes, call.func.id, None)
+    if build is None or call.func.id.startswith("_"):
+        raise ValueError(f"dualight.scenes has no function {call.func.id!r}")
+    args = [ast.literal_eval(a) for a in call.args]
+    kwargs = {k.arg: ast.literal_eval(k.value) for k in call.keywords if k.arg is not None}
+    return build(*args, **kwargs)
+
+
+def prepared_references() -> Iterator[Prepared]:
+    """Every stored 64x64 reference of bounded max_depth, its scene built from its metadata."""
+    for path in sorted(REFERENCES.glob("*_64_mean.exr")):
+        ref_name = path.name.removesuffix("_mean.exr")
+        info = load_reference(ref_name)[2]
+        if int(info["max_depth"]) < 1:
+            continue
+        expression = str(info["scene"])
+        name = ref_name.removesuffix("_64")
+        yield _prepared(name, ref_name, lambda e=expression: scene_of_reference(e))
 
 
 def errors(image: np.ndarray, ref: np.ndarray, ref_var: np.ndarray, mask: np.ndarray) -> dict:

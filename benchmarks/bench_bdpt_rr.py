@@ -11,6 +11,9 @@ Writes ``benchmarks/results/bench_bdpt_rr.json`` (or ``--out``).
 
     python benchmarks/bench_bdpt_rr.py        # 8 s, seeds 1-4, rr_depth 5, 3, 2
     python benchmarks/bench_bdpt_rr.py --budget 1 --seeds 1 --out /tmp/rr.json  # a smoke run
+    # every stored 64x64 reference (max_depth 8), 4 s, seeds 1-3, rr_depth 5 and 2:
+    python benchmarks/bench_bdpt_rr.py --scenes references --budget 4 --seeds 1,2,3 \
+        --rr-depths 5,2 --out benchmarks/results/bench_bdpt_rr_references.json
 """
 
 from __future__ import annotations
@@ -31,7 +34,7 @@ import dualight
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 sys.path[:0] = [str(HERE)]
-from bench_bdpt import Prepared, errors, prepared_scenes  # noqa: E402
+from bench_bdpt import Prepared, errors, prepared_references, prepared_scenes  # noqa: E402
 
 
 def efficiency(
@@ -69,6 +72,12 @@ def main() -> None:
     parser.add_argument("--seeds", type=str, default="1,2,3,4")
     parser.add_argument("--rr-depths", type=str, default="5,3,2")
     parser.add_argument("--threads", type=int, default=None, help="default: every core")
+    parser.add_argument(
+        "--scenes",
+        choices=("bench_bdpt", "references"),
+        default="bench_bdpt",
+        help="bench_bdpt's three scenes, or every stored 64x64 reference",
+    )
     parser.add_argument("--out", type=Path, default=RESULTS / "bench_bdpt_rr.json")
     args = parser.parse_args()
     seeds = [int(s) for s in args.seeds.split(",")]
@@ -81,7 +90,8 @@ def main() -> None:
         "rr_depths": depths,
         "scenes": {},
     }
-    for p in prepared_scenes():
+    chosen = prepared_references() if args.scenes == "references" else prepared_scenes()
+    for p in chosen:
         runs = [efficiency(p, args.budget, d, seed, args.threads) for seed in seeds for d in depths]
         means = {
             d: float(np.mean([r["efficiency"] for r in runs if r["rr_depth"] == d])) for d in depths

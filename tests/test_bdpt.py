@@ -177,6 +177,27 @@ def test_stats_count_connections_skipped_at_specular_vertices(method: str) -> No
     assert b["skipped_connections"] > 1.2 * a["skipped_connections"], (a, b)
 
 
+def test_bdpt_starts_roulette_at_vertex_two_by_default() -> None:
+    """rr_depth=None is each method's own default: BDPT's 2 (its connections multiply with its
+    subpaths' lengths), Mitsuba's 5 for the others. The default reaches the core: the image is
+    rr_depth=2's to the bit and not rr_depth=5's."""
+    scene = scenes.cornell_box(resolution=(16, 16))
+    render = lambda method, **kw: dualight.render(  # noqa: E731
+        scene, method, spp=8, max_depth=8, seed=3, progress=False, **kw
+    )
+    default = render("bdpt")
+    assert default.stats["rr_depth"] == 2
+    np.testing.assert_array_equal(np.asarray(default), np.asarray(render("bdpt", rr_depth=2)))
+    five = render("bdpt", rr_depth=5)
+    assert five.stats["rr_depth"] == 5
+    assert not np.array_equal(np.asarray(default), np.asarray(five))
+    for method in ("path", "light"):
+        assert render(method).stats["rr_depth"] == 5
+    mlt = {"bootstrap": 1000, "chains": 4}
+    pssmlt = dualight.render(scene, "pssmlt", mutations_per_pixel=1, progress=False, mlt=mlt)
+    assert pssmlt.stats["rr_depth"] == 5
+
+
 @pytest.mark.parametrize("method", ADJOINT)
 def test_time_limit(method: str) -> None:
     # (Ctrl-C for every method: test_path_tracer.py.)

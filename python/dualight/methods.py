@@ -57,6 +57,11 @@ class Estimator:
         """Whether the options have the field ``option``."""
         return option in self.options._fields
 
+    def default(self, option: str) -> Any:
+        """The core's default of field ``option`` for this method (``rr_depth``: 2 for BDPT,
+        5 elsewhere)."""
+        return getattr(self.options(), option)
+
     def keywords(
         self, fields: Mapping[str, Any], mlt: Mapping[str, Any] | None = None
     ) -> dict[str, Any]:

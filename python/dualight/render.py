@@ -223,7 +223,7 @@ def render(
     spp: int | None = _DEFAULT.spp,
     time_limit: float | None = None,
     max_depth: int = _DEFAULT.max_depth,
-    rr_depth: int = _DEFAULT.rr_depth,
+    rr_depth: int | None = None,
     seed: int = _DEFAULT.seed,
     threads: int | None = None,
     progress: bool | ProgressCallback = True,
@@ -287,9 +287,11 @@ def render(
         Longest path in segments, as in Mitsuba: 1 shows emitters only, 2 adds direct
         lighting, -1 is unbounded.
     rr_depth:
-        Russian roulette starts at this path vertex (Mitsuba's default 5). BDPT, whose
-        connections multiply with its subpaths' lengths, was 1.1-1.4x as efficient with 2 or 3
-        on the test scenes (README, "Speed").
+        Russian roulette starts at this path vertex. ``None``: the method's own default, 5
+        (Mitsuba's) for the path and light tracers and the MLT methods, 2 for BDPT, whose
+        connections multiply with its subpaths' lengths (1.1-1.4x as efficient as with 5 at
+        equal time on the test scenes; README, "Speed"). ``image.stats["rr_depth"]`` says
+        which ran.
     seed:
         The image is a deterministic function of the seed, whatever ``threads`` is.
     threads:
@@ -447,6 +449,8 @@ def render(
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
     estimator = ESTIMATORS[method]
     spp, threads = _budget(estimator, spp, time_limit, threads, mutations_per_pixel)
+    if rr_depth is None:
+        rr_depth = estimator.default("rr_depth")
     max_depth, rr_depth, seed, time_limit = (
         _plain(v) for v in (max_depth, rr_depth, seed, time_limit)
     )
