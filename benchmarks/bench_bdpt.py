@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import inspect
 import json
 import os
 import platform
@@ -113,7 +114,8 @@ def scene_of_reference(expression: str) -> dualight.Scene:
     if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)):
         raise ValueError(f"not a call of a dualight.scenes function: {expression!r}")
     build = getattr(scenes, call.func.id, None)
-    if build is None or call.func.id.startswith("_"):
+    ours = inspect.isfunction(build) and build.__module__.startswith("dualight.")
+    if not ours or call.func.id.startswith("_"):
         raise ValueError(f"dualight.scenes has no function {call.func.id!r}")
     args = [ast.literal_eval(a) for a in call.args]
     kwargs = {k.arg: ast.literal_eval(k.value) for k in call.keywords if k.arg is not None}
