@@ -378,7 +378,7 @@ void prepare_lanes(const int32_t* active, RayHit16& p, int* valid) {
 RayPacket packet_rays(const int32_t* active, const RayHit16& p) {
   RayPacket rays;
   for (int i = 0; i < RayHit16::kLanes; ++i) {
-    rays.set(i, Ray{{p.ox[i], p.oy[i], p.oz[i]}, {p.dx[i], p.dy[i], p.dz[i]}, p.tmax[i], p.tmin[i]});
+    rays.set(i, p.ray(i));
     rays.active[i] = active[i];
   }
   return rays;

@@ -57,6 +57,13 @@ struct alignas(64) RayHit16 {
   uint32_t mask[kLanes], id[kLanes], flags[kLanes];
   float ngx[kLanes], ngy[kLanes], ngz[kLanes], u[kLanes], v[kLanes];
   uint32_t prim[kLanes], geom[kLanes], inst[kLanes];
+  // Lane i's ray (its tmax the hit's t once a query found one), and setting it, as RayPacket's.
+  Ray ray(int i) const { return Ray{{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmax[i], tmin[i]}; }
+  void set(int i, const Ray& r) {
+    ox[i] = r.o.x, oy[i] = r.o.y, oz[i] = r.o.z;
+    dx[i] = r.d.x, dy[i] = r.d.y, dz[i] = r.d.z;
+    tmin[i] = r.tmin, tmax[i] = r.tmax;
+  }
 };
 
 // How the rays of a packet relate: incoherent (paths' later segments, in every direction), or

@@ -189,6 +189,7 @@ inline void add_constant_environment_seen(const PathLanesScene& ps, LanePaths& p
 }
 
 // The lanes whose ray's hit is known already (their camera rays', CameraRays), and that hit.
+// regenerate sets it before every bounce: the lanes it started, none else.
 struct KnownHits {
   vi lanes = splat_i(0);
   alignas(64) float t[kLanes] = {}, u[kLanes] = {}, v[kLanes] = {};
@@ -730,9 +731,8 @@ void trace_camera_rays(const PathLanesScene& ps, LaneBatch& batch, CameraRays<Sa
     q.sample[k] = static_cast<int32_t>(batch.next);
     const Point2 position = start_sample(batch.seed, batch.film_width, batch.samples[batch.next++], q.samplers[k]);
     const Ray r = ps.scene->eye_ray(ps.camera->generate_ray(position.u, position.v));
-    q.packet.ox[k] = r.o.x, q.packet.oy[k] = r.o.y, q.packet.oz[k] = r.o.z;
-    q.packet.dx[k] = r.d.x, q.packet.dy[k] = r.d.y, q.packet.dz[k] = r.d.z;
-    q.packet.tmin[k] = r.tmin, q.packet.tmax[k] = q.tmax[k] = r.tmax;
+    q.packet.set(k, r);
+    q.tmax[k] = r.tmax;
     active[k] = -1;
   }
   if (q.size > 0) ps.scene->intersect(active, q.packet, Coherence::kCoherent);
@@ -762,10 +762,10 @@ bool regenerate(const PathLanesScene& ps, LaneBatch& batch, CameraRays<Sampler>&
     st.sample[i] = camera.sample[k];
     st.samplers[i] = std::move(camera.samplers[k]);
     st.numbers.start(i, *st.samplers[i]);
-    o[0][i] = c.ox[k], o[1][i] = c.oy[k], o[2][i] = c.oz[k];
-    d[0][i] = c.dx[k], d[1][i] = c.dy[k], d[2][i] = c.dz[k];
-    tmin[i] = c.tmin[k], tmax[i] = camera.tmax[k], fresh[i] = -1;
-    known.t[i] = c.tmax[k], known.u[i] = c.u[k], known.v[i] = c.v[k];
+    const Ray r = c.ray(k);
+    for (int j = 0; j < 3; ++j) o[j][i] = r.o[j], d[j][i] = r.d[j];
+    tmin[i] = r.tmin, tmax[i] = camera.tmax[k], fresh[i] = -1;
+    known.t[i] = r.tmax, known.u[i] = c.u[k], known.v[i] = c.v[k];
     known.prim[i] = static_cast<int32_t>(c.prim[k]);
   }
   const vi start = load(fresh);
@@ -789,7 +789,6 @@ template <class Sampler>
 void bounce(const PathLanesScene& ps, LaneState<Sampler>& st, TraceCounters& counters) {
   LanePaths& paths = st.paths;
   const LaneVertex v = intersect(ps, st.rays, st.known, paths, counters);
-  st.known.lanes = splat_i(0);
   const V3 wo = -st.rays.d;
   add_emission(ps, v, wo, paths);
   const int max_depth = ps.options->max_depth;
