@@ -313,11 +313,7 @@ TEST_CASE("in_place_packets_find_what_copied_packets_find") {
   }
   const auto in_place = [&] {
     RayHit16 packet;
-    for (int i = 0; i < RayPacket::kLanes; ++i) {
-      packet.ox[i] = rays.ox[i], packet.oy[i] = rays.oy[i], packet.oz[i] = rays.oz[i];
-      packet.dx[i] = rays.dx[i], packet.dy[i] = rays.dy[i], packet.dz[i] = rays.dz[i];
-      packet.tmin[i] = rays.tmin[i], packet.tmax[i] = rays.tmax[i];
-    }
+    for (int i = 0; i < RayPacket::kLanes; ++i) packet.set(i, rays.ray(i));
     return packet;
   };
   for (const int width : {16, 8, 1}) {
@@ -377,10 +373,7 @@ TEST_CASE("coherent_packets_find_what_incoherent_packets_find") {
           for (int i = 0; i < RayHit16::kLanes; ++i) {
             const Point2 u = jitter.next_2d();
             const float x = static_cast<float>(one_pixel ? x0 : x0 + i) + u.u;
-            const Ray r = camera.generate_ray(x, static_cast<float>(row) + u.v);
-            rays.ox[i] = r.o.x, rays.oy[i] = r.o.y, rays.oz[i] = r.o.z;
-            rays.dx[i] = r.d.x, rays.dy[i] = r.d.y, rays.dz[i] = r.d.z;
-            rays.tmin[i] = 0.f, rays.tmax[i] = r.tmax;
+            rays.set(i, camera.generate_ray(x, static_cast<float>(row) + u.v));
             active[i] = (row + i) % 7 == 0 ? 0 : -1;
           }
           RayHit16 coherent = rays, incoherent = rays, shifted = rays;
