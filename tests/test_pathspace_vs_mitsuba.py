@@ -85,12 +85,15 @@ CASES = {
         {"path": 1024, "light": 2048, "bdpt": 512},
         {"path": LARGE_BLOCKS, "bdpt": LARGE_BLOCKS},
     ),
+    # The light tracer's run (21 s) is long, for make test's time (issue 23): BDPT's light
+    # tracing strategies (t = 1) cover the door in make test, the light tracer the other scenes.
     "door": Case(
         "door_64",
         lambda **kw: scenes.door_ajar(resolution=(64, 64), **kw),
         {"light_scale": 0.9},
         {"path": 1536, "light": 2048, "bdpt": 512},
         {"path": BLOCKS, "light": BLOCKS, "bdpt": BLOCKS},
+        long=("light",),
     ),
     # Issue 19's materials. Rough gold, frosted glass and a rough-plastic floor: the caustic
     # box's heavy tails (light focused by the frosted sphere, seen through it or in the gold)
@@ -263,12 +266,15 @@ CASES = {
         {"path": LARGE_BLOCKS, "bdpt": BLOCKS},
     ),
     # The door with glossy objects; control: the objects 20 % rougher.
+    # BDPT's run (24 s) is long, for make test's time (issue 23): make test keeps BDPT on the door
+    # and on the glossy and coated boxes, and this scene's path tracer.
     "door_glossy": Case(
         "door_glossy_64",
         lambda **kw: scenes.door_ajar(resolution=(64, 64), variant="glossy", **kw),
         {"light_scale": 0.9},
         {"path": 1536, "bdpt": 512},
         {"path": BLOCKS, "bdpt": BLOCKS},
+        long=("bdpt",),
     ),
     # Issue 22's path guiding: the path tracer guided by radiance, the light tracer by
     # importance, each trained first (a quarter of spp on top) and then sampling directions from
