@@ -300,8 +300,9 @@ CASES = {
         {"path": LARGE_BLOCKS, "bdpt": LARGE_BLOCKS},
         # Guided BDPT here keeps the reference's roulette (5): at its default (2) seed 21 left
         # one 16x16 block low at z -3.82 (the sphere caustics' heavy tails, worse with the
-        # roulette's 1 / q weights), while seeds 22-32 passed with |z| within 2.9 and both
-        # signs; issue 23. The other guided BDPT rows run the default.
+        # roulette's 1 / q weights), while seeds 22-25 passed (max |z| 2.1-2.9) and seeds 26-32
+        # had every block within |z| 2.7, both signs; issue 23. The other guided BDPT rows run
+        # the default.
         options={"guiding": True, "rr_depth": 5},
         long=("path", "light", "bdpt"),
     ),
