@@ -58,13 +58,22 @@ BatchEstimate<F> batch_estimate(F f) {
   return {std::move(f)};
 }
 
+// Pixel x's coordinate plus a jitter in [0, 1), kept inside the pixel: in floats x + jitter
+// rounds up to x + 1 when the jitter lies within half a float spacing of 1 (2^-24 at x = 1,
+// 2^-19 at x = 32), and its integer part is then the next pixel, past the film at its last one.
+inline float in_pixel(int x, float jitter) {
+  const float next = static_cast<float>(x + 1);
+  return std::min(static_cast<float>(x) + jitter, std::nextafter(next, 0.f));
+}
+
 // Sample p's sampler (its own random stream, in `sampler`) and the film position its first 2D
-// sample picks in the pixel.
+// sample picks in the pixel, whose integer parts are the pixel's (estimates find their pixel
+// from them).
 template <class Sampler>
 Point2 start_sample(uint64_t seed, int film_width, const PixelSample& p, std::optional<Sampler>& sampler) {
   const Point2 jitter =
       sampler.emplace(seed, static_cast<size_t>(p.y) * static_cast<size_t>(film_width) + p.x, p.s).next_2d();
-  return {static_cast<float>(p.x) + jitter.u, static_cast<float>(p.y) + jitter.v};
+  return {in_pixel(p.x, jitter.u), in_pixel(p.y, jitter.v)};
 }
 
 namespace pixel_driver_detail {

@@ -1,6 +1,8 @@
-// Sampling warps against their densities, the discrete distribution, frames and PCG32.
+// Sampling warps against their densities, the discrete distribution, frames, PCG32, and the
+// pixel driver's film positions.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "core/frame.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "pathspace/pixel_driver.h"
 #include "pathspace/strategies.h"
 
 using namespace dualight;
@@ -261,4 +264,29 @@ TEST_CASE("pcg32_streams_of_one_seed_are_uncorrelated") {
     }
   }
   CHECK(worst < 3.78 / std::sqrt(static_cast<double>(kStreams)));
+}
+
+namespace {
+
+// A sampler whose numbers are all the largest float below 1.
+struct LargestJitter {
+  LargestJitter(uint64_t, uint64_t, uint32_t) {}
+  Point2 next_2d() const { return {std::nextafter(1.f, 0.f), std::nextafter(1.f, 0.f)}; }
+};
+
+}  // namespace
+
+TEST_CASE("film_positions_stay_inside_their_pixel") {
+  // The largest jitter: x + jitter rounds up to x + 1 in floats for most x (the control), but the
+  // film position's integer parts are still the pixel's.
+  const float jitter = std::nextafter(1.f, 0.f);
+  std::optional<LargestJitter> sampler;
+  int rounded_up = 0, outside = 0;
+  for (int x = 0; x < 4096; ++x) {
+    rounded_up += static_cast<float>(x) + jitter == static_cast<float>(x + 1);
+    const Point2 p = start_sample(0, 4096, {x, 4095 - x, 0}, sampler);
+    outside += static_cast<int>(p.u) != x || static_cast<int>(p.v) != 4095 - x || !(p.u > static_cast<float>(x));
+  }
+  CHECK(rounded_up > 4000);
+  CHECK(outside == 0);
 }
