@@ -438,6 +438,21 @@ RENDER = [
         "bounded max_depth",
     ),
     ("strategy images for path", _render(strategy_images=True), ValueError, "bdpt' only"),
+    (
+        "light_pool 0",
+        _render("bdpt", light_pool=0),
+        ValueError,
+        "light_pool must be an integer >= 1",
+    ),
+    (
+        "light_pool 17",
+        _render("bdpt", light_pool=17),
+        ValueError,
+        "light_pool must be an integer <= 16",
+    ),
+    ("light_pool fractional", _render("bdpt", light_pool=2.5), ValueError, "light_pool must be"),
+    ("light_pool a bool", _render("bdpt", light_pool=True), ValueError, "light_pool must be"),
+    ("light_pool for path", _render(light_pool=4), ValueError, "light_pool applies"),
     ("progress not callable", _render(progress="yes"), TypeError, "progress must be"),
     ("mutations for path", _render(mutations_per_pixel=4), ValueError, "mutations_per_pixel"),
     (

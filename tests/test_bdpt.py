@@ -198,6 +198,51 @@ def test_bdpt_starts_roulette_at_vertex_two_by_default() -> None:
     assert pssmlt.stats["rr_depth"] == 5
 
 
+def test_light_pool_keeps_the_expectation() -> None:
+    """BDPT's light pool (each connection takes a light subpath of its pixel's group) estimates
+    the classic BDPT's image, at the default 16 and at 5, whose groups do not divide the
+    18-pixel rows (the tiles' rows hold 16 and 2 pixels): per pixel (Welch, each pixel's own
+    variance) and on the image mean over 8 seeds each (the seeds' scatter: the pixels of a
+    group, like light tracing's splats, correlate, so summed pixel variances would understate
+    the mean's). A 5% dimmer light fails the same mean test. stats["light_pool"] says which ran."""
+    scene = scenes.cornell_box(resolution=(18, 12))
+    dim = scenes.cornell_box(resolution=(18, 12), light_scale=0.95)
+
+    def renders(pool: int | None, first_seed: int, on=scene) -> list[dualight.Image]:
+        return [
+            dualight.render(
+                on, "bdpt", spp=256, max_depth=6, seed=seed, light_pool=pool, progress=False
+            )
+            for seed in range(first_seed, first_seed + 8)
+        ]
+
+    def mean_z(a: list[dualight.Image], b: list[dualight.Image]) -> float:
+        ma, mb = (np.array([float(np.mean(i)) for i in x]) for x in (a, b))
+        return abs(ma.mean() - mb.mean()) / float(np.sqrt(ma.var(ddof=1) / 8 + mb.var(ddof=1) / 8))
+
+    classic = renders(1, 100)
+    assert classic[0].stats["light_pool"] == 1
+    for pool, first_seed in ((None, 200), (5, 300)):
+        pooled = renders(pool, first_seed)
+        assert pooled[0].stats["light_pool"] == (16 if pool is None else pool)
+        assert _welch(pooled[0], classic[0], 1).pass_fraction >= 0.99
+        assert mean_z(pooled, classic) < 5.0
+    assert mean_z(renders(None, 200, on=dim), classic) > 5.0, "a 5% dimmer light went unnoticed"
+
+
+def test_light_pool_reaches_the_core_but_not_guided_bdpt() -> None:
+    """16 (the default) and 1 render different images; guided BDPT joins each sample's own
+    subpaths whatever light_pool says (the same bits, stats["light_pool"] 1)."""
+    scene = scenes.cornell_box(resolution=(16, 16))
+    render = lambda **kw: dualight.render(  # noqa: E731
+        scene, "bdpt", spp=4, max_depth=4, seed=9, progress=False, **kw
+    )
+    assert not np.array_equal(np.asarray(render()), np.asarray(render(light_pool=1)))
+    guided, guided_one = render(guiding=True), render(guiding=True, light_pool=1)
+    np.testing.assert_array_equal(np.asarray(guided), np.asarray(guided_one))
+    assert guided.stats["light_pool"] == guided_one.stats["light_pool"] == 1
+
+
 @pytest.mark.parametrize("method", ADJOINT)
 def test_time_limit(method: str) -> None:
     # (Ctrl-C for every method: test_path_tracer.py.)

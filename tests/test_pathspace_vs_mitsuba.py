@@ -53,7 +53,6 @@ class Judge:
 PIXELS = Judge()
 BLOCKS = Judge(pixel_test=False, blocks=(4, 8), delta_e_block=4)
 LARGE_BLOCKS = Judge(pixel_test=False, blocks=(16,), delta_e_block=4)
-EIGHT_BY_EIGHT = Judge(pixel_test=False, blocks=(8,), delta_e_block=4)
 
 
 @dataclass(frozen=True)
@@ -217,12 +216,18 @@ CASES = {
         {"path": 256, "bdpt": 128},
         {"path": BLOCKS, "bdpt": BLOCKS},
     ),
+    # BDPT by light sampling alone has the heavy tail of next-event estimation on the sharp
+    # plates (a rare sample in the narrow lobe carries much of a pixel): seeds 21-31 left one
+    # 8x8 block low (z -4.7 to -6.0, always the plates' row) in 4 of 11 renders, with the light
+    # pool (16) as with 1 (which here only changes the random numbers: every path's weight goes
+    # to s = 0 or 1), and one 16x16 block low in 1 (pool 1) and 2 (pool 16) of 11; the control
+    # failed at every seed. So 16x16 blocks (issue 23); 1024 spp did not help (2 of 11 at 8x8).
     "veach_mis_light": Case(
         "veach_mis_64",
         lambda **kw: scenes.veach_mis(resolution=(64, 64), **kw),
         {"roughness_scale": 1.2},
         {"path": 512, "bdpt": 512},
-        {"path": BLOCKS, "bdpt": EIGHT_BY_EIGHT},
+        {"path": BLOCKS, "bdpt": LARGE_BLOCKS},
         {"strategies": "light"},
     ),
     # One strategy alone on the Cornell box, whose light BSDF sampling finds often enough.

@@ -776,8 +776,8 @@ class BdptOptions:
     """
     Options of bidirectional path tracing.
     """
-    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
-    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 2, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
+    _fields: typing.ClassVar[tuple] = ('spp', 'max_depth', 'rr_depth', 'seed', 'threads', 'time_limit', 'skip_unneeded', 'sampler', 'first_sample', 'heuristic', 'strategies', 'strategy_images', 'light_pool', 'guiding', 'guide_training', 'guide_keep_iterations', 'guide_trial', 'guide_learn_bsdf_fraction', 'guide_bsdf_fraction', 'guide_spatial_threshold', 'guide_adjoint_roulette', 'guide_rho', 'guide_max_records')
+    def __init__(self, *, spp: int = 64, max_depth: int = -1, rr_depth: int = 2, seed: int = 0, threads: int = 0, time_limit: float = 0.0, skip_unneeded: bool = True, sampler: SamplerType | str = ..., first_sample: int = 0, heuristic: MisHeuristic | str = ..., strategies: Strategies | str = ..., strategy_images: bool = False, light_pool: int = 16, guiding: bool = False, guide_training: float = 0.25, guide_keep_iterations: int = 2, guide_trial: bool = True, guide_learn_bsdf_fraction: bool = True, guide_bsdf_fraction: float = 0.5, guide_spatial_threshold: int = 1000, guide_adjoint_roulette: bool = True, guide_rho: float = 0.01, guide_max_records: int = 8388608) -> None:
         """
         Options of bidirectional path tracing. Keywords only: an option left out keeps its default above (the C++ BdptOptions{}); an unknown one is a TypeError, a bad value a ValueError naming it.
         
@@ -793,6 +793,7 @@ class BdptOptions:
         heuristic: How the strategies' samples are weighted (MIS).
         strategies: mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample each path; light: s = 1 first, then s = 0, 2, 3, ...
         strategy_images: Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).
+        light_pool: Each connection (s >= 2, t >= 2) takes the light subpath of another pixel of its group of light_pool pixels (same tile row, same sample index), a different one per strategy; 1: the sample's own (classic BDPT). Guided BDPT uses 1.
         guiding: Train a guide first, then sample directions from it (guiding/).
         guide_training: Share of the budget (spp, or time_limit) spent training, in iterations of 1, 2, 4, ... spp; with spp the image still has spp samples per pixel.
         guide_keep_iterations: The image keeps the samples of this many last training iterations (0: none; BDPT with strategy_images: none), as unbiased as its own; the stats' kept_spp counts them.
@@ -865,6 +866,11 @@ class BdptOptions:
     def heuristic(self) -> MisHeuristic:
         """
         How the strategies' samples are weighted (MIS).
+        """
+    @property
+    def light_pool(self) -> int:
+        """
+        Each connection (s >= 2, t >= 2) takes the light subpath of another pixel of its group of light_pool pixels (same tile row, same sample index), a different one per strategy; 1: the sample's own (classic BDPT). Guided BDPT uses 1.
         """
     @property
     def max_depth(self) -> int:

@@ -77,7 +77,12 @@ void bind_pathspace(py::module_& m) {
              "mis: every strategy by MIS; bsdf: the fewest light vertices (s = 0) that can sample "
              "each path; light: s = 1 first, then s = 0, 2, 3, ...")
       .field("strategy_images", &BdptOptions::strategy_images,
-             "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).");
+             "Also an image per strategy (s, t), MIS-weighted; they sum to the image (needs a bounded max_depth).")
+      .field("light_pool", &BdptOptions::light_pool,
+             "Each connection (s >= 2, t >= 2) takes the light subpath of another pixel of its group of "
+             "light_pool pixels (same tile row, same sample index), a different one per strategy; 1: the "
+             "sample's own (classic BDPT). Guided BDPT uses 1.",
+             within(1, kBdptLightPoolMax));
   add_guiding_fields(bdpt);
   bdpt.bind();
 

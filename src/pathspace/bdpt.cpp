@@ -36,9 +36,36 @@ struct BdptTraining {
   const PixelImportance* pixel_weight = nullptr;
 };
 
+// The light pool's subpaths (kBdptLightPool, bdpt.h) of the pixels [x0, x1) of row y at sample
+// index s, each from a random stream of its own (not its pixel's, which its camera subpath and
+// connections draw from), into w.row_light; and the row's key at s (LightPool::for_strategy).
+constexpr uint64_t kLightPoolSeed = 0x6c69676874706f6full;
+template <class Sampler>
+void trace_row_light_subpaths(const Scene& scene, const BdptOptions& options, int width, int x0, int x1, int y,
+                              uint32_t s, Subpaths& w, TraceCounters& counters) {
+  const WalkLimits limits{options.max_depth, options.rr_depth};
+  const uint64_t seed = hash_combine(options.seed, kLightPoolSeed);
+  w.row_light.resize(static_cast<size_t>(x1 - x0));
+  w.row_x0 = x0;
+  w.row_key = hash_combine(hash_combine(seed, static_cast<uint64_t>(y)), s);
+  for (int x = x0; x < x1; ++x) {
+    Sampler sampler(seed, static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x), s);
+    light_subpath(scene, sampler, limits, w.row_light[static_cast<size_t>(x - x0)], counters);
+  }
+}
+
+// Pixel x's light pool: its group of `size` pixels of the row whose subpaths w.row_light holds.
+LightPool light_pool_of(const Subpaths& w, int x, int size) {
+  const int k = x - w.row_x0, n = static_cast<int>(w.row_light.size());
+  const int first = k / size * size;
+  return {w.row_light.data() + first, static_cast<uint32_t>(std::min(size, n - first)),
+          static_cast<uint32_t>(k - first), hash_combine(w.row_key, static_cast<uint64_t>(w.row_x0 + first))};
+}
+
 RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
                        RenderControl& control, Film& film, const SubpathGuides& guides,
                        const BdptTraining* training = nullptr) {
+  static_assert(kBdptLightPoolMax <= pixel_driver_detail::kTile, "a light pool lies within a tile row");
   const PixelDriverOptions driver{options.spp, options.seed, options.threads, options.time_limit, true,
                                   connections_unoccluded(scene, camera, options.skip_unneeded), options.first_sample};
   tbb::enumerable_thread_specific<Subpaths> workspaces;
@@ -51,8 +78,21 @@ RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const Bd
     return bdpt_sample(scene, camera, options, x, y, sampler, workspaces.local(), counters, splats, &film, guides,
                        &recording);
   };
+  const bool pooled = options.light_pool > 1;
+  if (pooled && (guides.any() || training != nullptr)) throw std::logic_error("guided BDPT joins its own subpaths");
   return with_sampler(options.sampler, [&](auto tag) {
-    return drive_pixels<typename decltype(tag)::type>(film, driver, control, estimate);
+    using Sampler = typename decltype(tag)::type;
+    if (!pooled) return drive_pixels<Sampler>(film, driver, control, estimate);
+    const auto pooled_estimate = [&](float x, float y, Sampler& sampler, TraceCounters& counters, SplatList& splats) {
+      Subpaths& w = workspaces.local();
+      // The film position's integer part is its pixel's (start_sample).
+      const LightPool pool = light_pool_of(w, static_cast<int>(x), options.light_pool);
+      return bdpt_sample(scene, camera, options, x, y, sampler, w, counters, splats, &film, {}, nullptr, &pool);
+    };
+    const auto begin_row = [&](int x0, int x1, int y, uint32_t s, TraceCounters& counters) {
+      trace_row_light_subpaths<Sampler>(scene, options, camera.width(), x0, x1, y, s, workspaces.local(), counters);
+    };
+    return drive_pixels<Sampler>(film, driver, control, row_estimate(pooled_estimate, begin_row));
   });
 }
 
@@ -88,8 +128,12 @@ std::array<TrainedGuide, 2> train_bdpt_guides(const Scene& scene, const PinholeC
 // stop, or after it), renders the image guided or not, and adds the training's and the trial's
 // stats and samples. Interrupted during training, the last finished training iteration's image
 // is returned.
-RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,
+RenderResult render_bdpt_guided(const Scene& scene, const PinholeCamera& camera, const BdptOptions& guided_options,
                                 RenderControl& control, Film film) {
+  // Every pass, guided or not, the trial's and the image's, joins each sample's own subpaths: the
+  // trial compares the guides with nothing else, and stats["light_pool"] is 1.
+  BdptOptions options = guided_options;
+  options.light_pool = 1;
   const auto render = [&](const std::array<TrainedGuide, 2>* guided, const BdptOptions& o, Film& into) {
     const SubpathGuides guides = guided ? SubpathGuides{(*guided)[0].tree.get(), (*guided)[1].tree.get()}
                                         : SubpathGuides{};

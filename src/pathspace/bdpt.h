@@ -39,6 +39,29 @@ namespace dualight {
 // estimate hardly varies). pbrt-v4's BDPT plays no roulette; Mitsuba 3 has no BDPT.
 inline constexpr int kBdptRrDepth = 2;
 
+// BDPT's light pool (BdptOptions::light_pool): how many light subpaths a connection takes its
+// own from by default, and at most (the pixels of a tile row, pixel_driver.h). Each pixel sample
+// traces one light subpath, as in classic BDPT, but from a stream of its own, before its tile row
+// is estimated at that sample index. Each connection of a camera vertex to a light vertex
+// (s >= 2, t >= 2) takes the light subpath of another pixel of its group of light_pool pixels
+// (same tile row, same sample index): strategy (s, t) of the group's pixel k takes subpath
+// k + shift(s, t) mod light_pool, with one uniformly drawn shift per strategy for the whole
+// group (LightPool, bdpt_sample.h). Every such subpath is a sample of the light subpath
+// distribution independent of the camera subpath, so each strategy keeps its expectation and the
+// MIS weights (functions of the path) still sum to one; and, per strategy, each subpath serves
+// one pixel of the group, as in classic BDPT. What changes: one camera subpath's connections no
+// longer all share one light subpath, so where few light subpaths reach what the camera sees
+// (Veach's door) a sample's connections no longer succeed or fail together. The pixels of a
+// group share their subpaths, so their errors correlate (by about 0.03 between neighbours on the
+// door); measured on block means from single pixels to 32x32 blocks, no block shape lost (at
+// equal spp on the door, 64 seeds: pixels 0.69x the relMSE, the groups' 1x16 blocks 0.96x,
+// 32x32 blocks 0.99x; README, "Speed"; benchmarks/bench_bdpt_pool.py). A light vertex cache [Davidovic, Krivanek, Hasan,
+// Slusallek 2014, sec. 4.3] shares light vertices across the whole image; groups within a tile
+// row keep the image a function of the seed, whatever the threads or passes. The light tracing
+// (t = 1) and next-event estimation (s = 1) strategies use the sample's own subpath.
+inline constexpr int kBdptLightPoolMax = 16;
+inline constexpr int kBdptLightPool = 16;
+
 struct BdptOptions : EstimatorOptions, GuidingOptions {
   BdptOptions() { rr_depth = kBdptRrDepth; }
 
@@ -50,11 +73,18 @@ struct BdptOptions : EstimatorOptions, GuidingOptions {
   bool strategy_images = false;
   // Paths of fewer segments are left out (MLT renders direct light separately with them).
   int min_depth = 1;
+  // The light subpaths each connection takes its own from (kBdptLightPool); 1: the sample's own,
+  // classic BDPT. Guided BDPT always uses 1 (its training records what each subpath carried, and
+  // its trial compares the guides with nothing else).
+  int light_pool = kBdptLightPool;
 
   void validate() const {
     EstimatorOptions::validate();
     if (strategy_images && max_depth < 1) {
       throw std::invalid_argument("strategy_images needs a bounded max_depth >= 1");
+    }
+    if (light_pool < 1 || light_pool > kBdptLightPoolMax) {
+      throw std::invalid_argument("light_pool must be within [1, 16]: the pixels of a tile row");
     }
   }
 };

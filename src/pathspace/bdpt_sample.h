@@ -4,6 +4,11 @@
 // Shared by BDPT (independent or Sobol samplers) and primary-sample-space MLT (Kelemen's
 // sampler): all of its randomness comes from `sampler`.
 #pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "core/rng.h"
 #include "film/film.h"
 #include "film/splat_list.h"
 #include "pathspace/bdpt.h"
@@ -22,6 +27,11 @@ inline size_t strategy_layer(int s, int t) {
 
 struct Subpaths {
   Path camera, light;
+  // The light subpaths of a tile row's pixels at one sample index, the row's first pixel and the
+  // row's key for its groups' shifts (BDPT's light pool, bdpt.cpp).
+  std::vector<Path> row_light;
+  int row_x0 = 0;
+  uint64_t row_key = 0;
   // What each vertex's strategies contributed (a guided BDPT training iteration's records).
   std::vector<Color> camera_arrived, light_arrived;
 };
@@ -50,43 +60,90 @@ inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) 
   record_incident(paths.light, paths.light_arrived, TransportMode::Importance, *rec.importance);
 }
 
-// Every strategy (s, t) joining the two subpaths, of depth s + t - 1 within [opt.min_depth,
-// opt.max_depth], that carries light: visit(s, t, unweighted contribution, sampled, raster),
-// where `sampled` stands in for the emitter end (s = 1) or the camera (t = 1) and `raster` is
-// the film position of a light-tracing strategy (t = 1). Connections draw from `sampler`. In a
-// scene lit only by delta lights no camera subpath ends on an emitter: the strategies s = 0
-// are not evaluated (render.py's stats say so).
+// The light subpaths a sample's connections take theirs from (BdptOptions::light_pool): the
+// `count` subpaths of its pool group, the sample's own at `own`. Strategy (s, t) of the group's
+// pixel k takes the subpath k + shift(s, t) (mod count), where the shift, drawn uniformly per
+// strategy from `key` (the group's, at this sample index), is the same for all of the group's
+// pixels: each pixel's connection takes a uniformly drawn subpath, and each subpath serves one
+// pixel of the group per strategy, as in classic BDPT (no subpath is used twice while another
+// goes unused).
+struct LightPool {
+  const Path* paths = nullptr;
+  uint32_t count = 1;
+  uint32_t own = 0;
+  uint64_t key = 0;
+
+  const Path& own_path() const { return paths[own]; }
+  const Path& for_strategy(int s, int t) const {
+    if (count == 1) return paths[own];
+    // The shift in [0, count) by multiply and shift (Lemire 2019), no division: this runs for
+    // every strategy of every sample.
+    const uint64_t h = hash_combine(key, static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+    const uint32_t shift = static_cast<uint32_t>(((h >> 32) * count) >> 32);
+    const uint32_t k = own + shift;
+    return paths[k >= count ? k - count : k];
+  }
+  size_t longest() const {
+    size_t n = 0;
+    for (uint32_t k = 0; k < count; ++k) n = std::max(n, paths[k].size());
+    return n;
+  }
+};
+
+// Every strategy (s, t) joining camera subpath `cam` to the light subpaths of `pool`, of depth
+// s + t - 1 within [opt.min_depth, opt.max_depth], that carries light: visit(light, s, t,
+// unweighted contribution, sampled, raster), where `light` is the light subpath it used (the
+// pool's own but where s >= 2 and t >= 2: LightPool::for_strategy's), `sampled` stands in
+// for the emitter end (s = 1) or the camera (t = 1) and `raster` is the film position of a
+// light-tracing strategy (t = 1). Connections draw from `sampler`. In a scene lit only by delta
+// lights no camera subpath ends on an emitter: the strategies s = 0 are not evaluated (render.py's
+// stats say so).
 template <class Sampler, class Visit>
-void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt,
-                       const Subpaths& paths, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
-  const Path& cam = paths.camera;
-  const Path& light = paths.light;
+void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, const Path& cam,
+                       const LightPool& pool, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
   const int s_first = scene.has_hittable_emitter() ? 0 : 1;
+  const int s_last = static_cast<int>(pool.longest());
   for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
-    for (int s = s_first; s <= static_cast<int>(light.size()); ++s) {
+    for (int s = s_first; s <= s_last; ++s) {
       const int depth = s + t - 1;
       if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
       if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
+      const Path& light = s >= 2 && t >= 2 ? pool.for_strategy(s, t) : pool.own_path();
+      if (s > static_cast<int>(light.size())) continue;
       Vertex sampled;
       Point2 raster{};
       const Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
-      if (!is_black(c)) visit(s, t, c, sampled, raster);
+      if (!is_black(c)) visit(light, s, t, c, sampled, raster);
     }
   }
 }
 
+// The same for one sample's own subpaths: visit(s, t, c, sampled, raster).
+template <class Sampler, class Visit>
+void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt,
+                       const Subpaths& paths, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
+  for_each_strategy(scene, camera, opt, paths.camera, LightPool{&paths.light}, sampler, counters,
+                    [&](const Path&, int s, int t, const Color& c, const Vertex& sampled, const Point2& raster) {
+                      visit(s, t, c, sampled, raster);
+                    });
+}
+
 // `layers`: the film whose strategy layers receive the own-pixel contributions (only when
 // opt.strategy_images), else unused. `guides`: guided BDPT's (subpath.h), or none; `recording`:
-// a training iteration's, or none.
+// a training iteration's, or none. `pool`: the light subpaths already traced for this sample's
+// connections (unguided, not recording), or none: then the sample traces its own.
 template <class Sampler>
 Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, float x, float y,
                   Sampler& sampler, Subpaths& paths, TraceCounters& counters, SplatList& splats, Film* layers,
-                  const SubpathGuides& guides = {}, const SubpathRecording* recording = nullptr) {
+                  const SubpathGuides& guides = {}, const SubpathRecording* recording = nullptr,
+                  const LightPool* pool = nullptr) {
   const WalkLimits limits{opt.max_depth, opt.rr_depth};
   // The camera subpath continues the camera stream, which drew the film position.
   camera_subpath(scene, camera, x, y, sampler, limits, paths.camera, counters, guides.camera());
-  sampler.start_stream(kLightStream);
-  light_subpath(scene, sampler, limits, paths.light, counters, guides.light());
+  if (pool == nullptr) {
+    sampler.start_stream(kLightStream);
+    light_subpath(scene, sampler, limits, paths.light, counters, guides.light());
+  }
   sampler.start_stream(kConnectStream);
   if (guides.any()) {
     set_vertex_guides(paths.camera, guides, TransportMode::Radiance);
@@ -99,9 +156,10 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   }
 
   Color L(0.f);
-  for_each_strategy(scene, camera, opt, paths, sampler, counters,
-                    [&](int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
-                      c *= mis_weight(scene, camera, paths.light, paths.camera, sampled, s, t, opt.heuristic,
+  const LightPool own{&paths.light};
+  for_each_strategy(scene, camera, opt, paths.camera, pool != nullptr ? *pool : own, sampler, counters,
+                    [&](const Path& light, int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
+                      c *= mis_weight(scene, camera, light, paths.camera, sampled, s, t, opt.heuristic,
                                       opt.strategies, guides.any() ? &guides : nullptr);
                       if (t == 1) {
                         const uint32_t target = static_cast<uint32_t>(raster.v) * camera.width() +

@@ -18,6 +18,7 @@ BdptOptions chain_bdpt(const ChainOptions& opt) {
   bdpt.rr_depth = opt.rr_depth;
   bdpt.heuristic = opt.heuristic;
   bdpt.min_depth = opt.direct_spp > 0 ? 3 : 1;
+  bdpt.light_pool = 1;  // a chain's sample is its own subpaths' strategies
   return bdpt;
 }
 
@@ -32,6 +33,7 @@ inline RenderResult render_direct_light(const Scene& scene, const PinholeCamera&
   direct.max_depth = base.max_depth < 0 ? 2 : std::min(base.max_depth, 2);
   direct.heuristic = heuristic;
   direct.seed = hash_combine(base.seed, 0xd1ec7ull);
+  direct.light_pool = 1;  // paths of 2 segments join no light vertex to a camera vertex (s, t >= 2)
   RenderResult result = render_bdpt(scene, camera, direct, control);
   control.done.store(0);
   return result;

@@ -58,6 +58,23 @@ BatchEstimate<F> batch_estimate(F f) {
   return {std::move(f)};
 }
 
+// A per-pixel estimate f whose rows are prepared first: begin_row(x0, x1, y, s, counters) runs
+// before the pixels [x0, x1) of row y (a tile's row) are estimated at sample index s, on the
+// thread that then estimates them (BDPT's light pool, bdpt.cpp).
+template <class F, class B>
+struct RowEstimate {
+  F f;
+  B begin_row;
+};
+template <class F, class B>
+RowEstimate<F, B> row_estimate(F f, B begin_row) {
+  return {std::move(f), std::move(begin_row)};
+}
+template <class T>
+struct is_row_estimate : std::false_type {};
+template <class F, class B>
+struct is_row_estimate<RowEstimate<F, B>> : std::true_type {};
+
 // Pixel x's coordinate plus a jitter in [0, 1), kept inside the pixel: in floats x + jitter
 // rounds up to x + 1 when the jitter lies within half a float spacing of 1 (2^-24 at x = 1,
 // 2^-19 at x = 32), and its integer part is then the next pixel, past the film at its last one.
@@ -110,19 +127,25 @@ inline void add_sample(Film& film, size_t pixel, uint32_t s, Color value, uint64
   if (block_ends_at(s)) film.end_block(pixel);
 }
 
-// Sample index s of the pixels [x0, x1) of row y, one estimate call each; returns how many.
+// Sample index s of the pixels [x0, x1) of row y, one estimate call each (a row estimate's
+// begin_row first); returns how many.
 template <class Sampler, class Estimate>
 uint32_t render_row(Film& film, const PixelDriverOptions& opt, int x0, int x1, int y, uint32_t s,
                     const Estimate& estimate, TraceCounters& local, uint64_t& invalid, SplatList& splats) {
-  std::optional<Sampler> sampler;
-  for (int x = x0; x < x1; ++x) {
-    const Point2 position = start_sample(opt.seed, film.width(), {x, y, s}, sampler);
-    splats.begin_path();
-    const Color value = estimate(position.u, position.v, *sampler, local, splats);
-    splats.end_path();
-    add_sample(film, static_cast<size_t>(y) * film.width() + x, s, value, invalid);
+  if constexpr (is_row_estimate<Estimate>::value) {
+    estimate.begin_row(x0, x1, y, s, local);
+    return render_row<Sampler>(film, opt, x0, x1, y, s, estimate.f, local, invalid, splats);
+  } else {
+    std::optional<Sampler> sampler;
+    for (int x = x0; x < x1; ++x) {
+      const Point2 position = start_sample(opt.seed, film.width(), {x, y, s}, sampler);
+      splats.begin_path();
+      const Color value = estimate(position.u, position.v, *sampler, local, splats);
+      splats.end_path();
+      add_sample(film, static_cast<size_t>(y) * film.width() + x, s, value, invalid);
+    }
+    return static_cast<uint32_t>(x1 - x0);
   }
-  return static_cast<uint32_t>(x1 - x0);
 }
 
 // Sample indices [first, first + count) of every pixel of a tile (or of a row of one), sample
