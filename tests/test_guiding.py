@@ -229,7 +229,8 @@ def test_a_time_limited_render_tries_whether_the_guide_pays(method: str) -> None
 
 def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualight.Scene) -> None:
     """With the BSDF always chosen the guide draws no random number and changes no density:
-    the unguided image (BDPT: its MIS weights too)."""
+    the unguided image (BDPT: its MIS weights too; and classic BDPT's, light_pool=1, which
+    guided BDPT runs)."""
     fixed = {
         "learn_bsdf_fraction": False,
         "bsdf_fraction": 1.0,
@@ -238,7 +239,8 @@ def test_a_fixed_bsdf_fraction_of_one_renders_the_unguided_image(cornell: dualig
     }
     for method in ("path", "light", "bdpt"):
         guided = dualight.render(cornell, method, spp=16, seed=4, guiding=fixed, progress=False)
-        plain = dualight.render(cornell, method, spp=16, seed=4, progress=False)
+        classic = {"light_pool": 1} if method == "bdpt" else {}
+        plain = dualight.render(cornell, method, spp=16, seed=4, progress=False, **classic)
         assert np.array_equal(np.asarray(guided), np.asarray(plain))
 
 
