@@ -147,6 +147,36 @@ def errors(image: np.ndarray, ref: np.ndarray, ref_var: np.ndarray, mask: np.nda
     }
 
 
+def bdpt_efficiency(
+    p: Prepared, budget: float, seed: int, threads: int | None, **options: Any
+) -> dict[str, Any]:
+    """One BDPT render of ``p``'s scene for ``budget`` seconds with ``options`` (render's
+    keywords): the options, its spp, seconds, relMSE and efficiency 1 / (relMSE x seconds)."""
+    start = time.perf_counter()
+    image = dualight.render(
+        p.scene,
+        "bdpt",
+        spp=None,
+        time_limit=budget,
+        max_depth=int(p.info["max_depth"]),
+        seed=seed,
+        threads=threads,
+        progress=False,
+        **options,
+    )
+    seconds = time.perf_counter() - start
+    relmse = errors(np.asarray(image), p.mean, p.variance, p.mask)["relmse"]
+    return {
+        **options,
+        "seed": seed,
+        "threads": image.stats["threads"],
+        "spp": image.stats["spp"],
+        "seconds": seconds,
+        "relmse": relmse,
+        "efficiency": 1.0 / (relmse * seconds),
+    }
+
+
 def efficiency_ratios(top: dict[str, dict[str, Any]], pairs: list[tuple[str, str]]) -> dict:
     """Equal-time ratios of efficiency 1 / (relMSE * seconds), "a / b" for each pair present."""
     return {

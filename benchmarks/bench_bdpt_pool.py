@@ -31,7 +31,6 @@ import json
 import os
 import platform
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -42,7 +41,7 @@ import dualight
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 sys.path[:0] = [str(HERE)]
-from bench_bdpt import EPS, Prepared, errors, prepared_scenes  # noqa: E402
+from bench_bdpt import EPS, Prepared, bdpt_efficiency, prepared_scenes  # noqa: E402
 
 SHAPES = ((1, 1), (1, 2), (1, 4), (1, 8), (1, 16), (2, 16), (4, 4), (8, 8), (16, 16), (32, 32))
 
@@ -65,19 +64,7 @@ def efficiency(
     p: Prepared, budget: float, pool: int, seed: int, threads: int | None
 ) -> dict[str, Any]:
     """One render of ``budget`` seconds: its spp, seconds, relMSE and efficiency."""
-    start = time.perf_counter()
-    image = render(p, pool, seed, threads, spp=None, time_limit=budget)
-    seconds = time.perf_counter() - start
-    relmse = errors(np.asarray(image), p.mean, p.variance, p.mask)["relmse"]
-    return {
-        "light_pool": pool,
-        "seed": seed,
-        "threads": image.stats["threads"],
-        "spp": image.stats["spp"],
-        "seconds": seconds,
-        "relmse": relmse,
-        "efficiency": 1.0 / (relmse * seconds),
-    }
+    return bdpt_efficiency(p, budget, seed, threads, light_pool=pool)
 
 
 def block_means(image: np.ndarray, rows: int, cols: int) -> np.ndarray:

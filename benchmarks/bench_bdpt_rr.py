@@ -23,47 +23,22 @@ import json
 import os
 import platform
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-import dualight
-
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 sys.path[:0] = [str(HERE)]
-from bench_bdpt import Prepared, errors, prepared_references, prepared_scenes  # noqa: E402
+from bench_bdpt import Prepared, bdpt_efficiency, prepared_references, prepared_scenes  # noqa: E402
 
 
 def efficiency(
     p: Prepared, budget: float, rr_depth: int, seed: int, threads: int | None
 ) -> dict[str, Any]:
     """One BDPT render of ``budget`` seconds: its spp, seconds, relMSE and efficiency."""
-    start = time.perf_counter()
-    image = dualight.render(
-        p.scene,
-        "bdpt",
-        spp=None,
-        time_limit=budget,
-        max_depth=int(p.info["max_depth"]),
-        rr_depth=rr_depth,
-        seed=seed,
-        threads=threads,
-        progress=False,
-    )
-    seconds = time.perf_counter() - start
-    relmse = errors(np.asarray(image), p.mean, p.variance, p.mask)["relmse"]
-    return {
-        "rr_depth": rr_depth,
-        "seed": seed,
-        "threads": image.stats["threads"],
-        "spp": image.stats["spp"],
-        "seconds": seconds,
-        "relmse": relmse,
-        "efficiency": 1.0 / (relmse * seconds),
-    }
+    return bdpt_efficiency(p, budget, seed, threads, rr_depth=rr_depth)
 
 
 def main() -> None:
