@@ -55,10 +55,12 @@ inline constexpr int kBdptRrDepth = 2;
 // group share their subpaths, so their errors correlate (by about 0.03 between neighbours on the
 // door); measured on block means from single pixels to 32x32 blocks, no block shape lost (at
 // equal spp on the door, 64 seeds: pixels 0.69x the relMSE, the groups' 1x16 blocks 0.96x,
-// 32x32 blocks 0.99x; README, "Speed"; benchmarks/bench_bdpt_pool.py). A light vertex cache [Davidovic, Krivanek, Hasan,
-// Slusallek 2014, sec. 4.3] shares light vertices across the whole image; groups within a tile
-// row keep the image a function of the seed, whatever the threads or passes. The light tracing
-// (t = 1) and next-event estimation (s = 1) strategies use the sample's own subpath.
+// 32x32 blocks 0.99x; README, "Speed"; benchmarks/bench_bdpt_pool.py). Each sample costs
+// 6-8 % more (the same rays): at equal time the door gains 1.3-1.4x, the Cornell box about
+// breaks even and the caustic box loses up to 9 %. A light vertex cache [Davidovic, Krivanek,
+// Hasan, Slusallek 2014, sec. 4.3] shares light vertices across the whole image; groups within a
+// tile row keep the image a function of the seed, whatever the threads or passes. The light
+// tracing (t = 1) and next-event estimation (s = 1) strategies use the sample's own subpath.
 inline constexpr int kBdptLightPoolMax = 16;
 inline constexpr int kBdptLightPool = 16;
 
