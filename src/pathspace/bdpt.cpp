@@ -38,7 +38,8 @@ struct BdptTraining {
 
 // The light pool's subpaths (kBdptLightPool, bdpt.h) of the pixels [x0, x1) of row y at sample
 // index s, each from a random stream of its own (not its pixel's, which its camera subpath and
-// connections draw from), into w.row_light; and the row's key at s (LightPool::for_strategy).
+// connections draw from), into w.row_light; the length of each group's longest; and the row's
+// key at s (LightPool::for_strategy).
 constexpr uint64_t kLightPoolSeed = 0x6c69676874706f6full;
 template <class Sampler>
 void trace_row_light_subpaths(const Scene& scene, const BdptOptions& options, int width, int x0, int x1, int y,
@@ -52,6 +53,12 @@ void trace_row_light_subpaths(const Scene& scene, const BdptOptions& options, in
     Sampler sampler(seed, static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x), s);
     light_subpath(scene, sampler, limits, w.row_light[static_cast<size_t>(x - x0)], counters);
   }
+  const int size = options.light_pool;
+  w.row_longest.assign(static_cast<size_t>((x1 - x0 + size - 1) / size), 0);
+  for (int k = 0; k < x1 - x0; ++k) {
+    uint32_t& longest = w.row_longest[static_cast<size_t>(k / size)];
+    longest = std::max(longest, static_cast<uint32_t>(w.row_light[static_cast<size_t>(k)].size()));
+  }
 }
 
 // Pixel x's light pool: its group of `size` pixels of the row whose subpaths w.row_light holds.
@@ -59,7 +66,8 @@ LightPool light_pool_of(const Subpaths& w, int x, int size) {
   const int k = x - w.row_x0, n = static_cast<int>(w.row_light.size());
   const int first = k / size * size;
   return {w.row_light.data() + first, static_cast<uint32_t>(std::min(size, n - first)),
-          static_cast<uint32_t>(k - first), hash_combine(w.row_key, static_cast<uint64_t>(w.row_x0 + first))};
+          static_cast<uint32_t>(k - first), hash_combine(w.row_key, static_cast<uint64_t>(w.row_x0 + first)),
+          w.row_longest[static_cast<size_t>(k / size)]};
 }
 
 RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,

@@ -5,6 +5,7 @@
 // sampler): all of its randomness comes from `sampler`.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,9 +28,10 @@ inline size_t strategy_layer(int s, int t) {
 
 struct Subpaths {
   Path camera, light;
-  // The light subpaths of a tile row's pixels at one sample index, the row's first pixel and the
-  // row's key for its groups' shifts (BDPT's light pool, bdpt.cpp).
+  // The light subpaths of a tile row's pixels at one sample index, their groups' longest, the
+  // row's first pixel and the row's key for its groups' shifts (BDPT's light pool, bdpt.cpp).
   std::vector<Path> row_light;
+  std::vector<uint32_t> row_longest;  // the number of vertices of each group's longest subpath
   int row_x0 = 0;
   uint64_t row_key = 0;
   // What each vertex's strategies contributed (a guided BDPT training iteration's records).
@@ -68,25 +70,44 @@ inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) 
 // pixel of the group per strategy, as in classic BDPT (no subpath is used twice while another
 // goes unused).
 struct LightPool {
-  const Path* paths = nullptr;
-  uint32_t count = 1;
-  uint32_t own = 0;
-  uint64_t key = 0;
+  // mix64(s << 32 | t), tabulated for s, t < kStrategyHashes.
+  static constexpr int kStrategyHashes = 16;
+  static constexpr std::array<uint64_t, kStrategyHashes * kStrategyHashes> kStrategyHash = [] {
+    std::array<uint64_t, kStrategyHashes * kStrategyHashes> table{};
+    for (int s = 0; s < kStrategyHashes; ++s) {
+      for (int t = 0; t < kStrategyHashes; ++t) {
+        table[static_cast<size_t>(s * kStrategyHashes + t)] = mix64(static_cast<uint64_t>(s) << 32 | uint64_t(t));
+      }
+    }
+    return table;
+  }();
+  static uint64_t strategy_hash(int s, int t) {
+    if (s < kStrategyHashes && t < kStrategyHashes) return kStrategyHash[static_cast<size_t>(s * kStrategyHashes + t)];
+    return mix64(static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+  }
+
+  const Path* paths;
+  uint32_t count;
+  uint32_t own;
+  uint64_t key;
+  uint32_t longest;  // the number of vertices of the pool's longest subpath
+
+  // A sample's own subpath alone (classic BDPT).
+  explicit LightPool(const Path& own_path)
+      : paths(&own_path), count(1), own(0), key(0), longest(static_cast<uint32_t>(own_path.size())) {}
+  LightPool(const Path* group, uint32_t count, uint32_t own, uint64_t key, uint32_t longest)
+      : paths(group), count(count), own(own), key(key), longest(longest) {}
 
   const Path& own_path() const { return paths[own]; }
   const Path& for_strategy(int s, int t) const {
     if (count == 1) return paths[own];
     // The shift in [0, count) by multiply and shift (Lemire 2019), no division: this runs for
-    // every strategy of every sample.
-    const uint64_t h = hash_combine(key, static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+    // every strategy of every sample. hash_combine(key, s << 32 | t), with the strategy's half
+    // from a table.
+    const uint64_t h = mix64(key ^ strategy_hash(s, t));
     const uint32_t shift = static_cast<uint32_t>(((h >> 32) * count) >> 32);
     const uint32_t k = own + shift;
     return paths[k >= count ? k - count : k];
-  }
-  size_t longest() const {
-    size_t n = 0;
-    for (uint32_t k = 0; k < count; ++k) n = std::max(n, paths[k].size());
-    return n;
   }
 };
 
@@ -102,15 +123,15 @@ template <class Sampler, class Visit>
 void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt, const Path& cam,
                        const LightPool& pool, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
   const int s_first = scene.has_hittable_emitter() ? 0 : 1;
-  const int s_last = static_cast<int>(pool.longest());
+  const int s_last = static_cast<int>(pool.longest);
+  Vertex sampled;  // set by connect where s = 1 or t = 1, the only strategies that read it
   for (int t = 1; t <= static_cast<int>(cam.size()); ++t) {
-    for (int s = s_first; s <= s_last; ++s) {
-      const int depth = s + t - 1;
-      if (depth < opt.min_depth || (opt.max_depth >= 0 && depth > opt.max_depth)) continue;
+    // The strategies of depth s + t - 1 within [opt.min_depth, opt.max_depth].
+    const int s_end = opt.max_depth >= 0 ? std::min(s_last, opt.max_depth + 1 - t) : s_last;
+    for (int s = std::max(s_first, opt.min_depth + 1 - t); s <= s_end; ++s) {
       if (s == 1 && t == 1) continue;  // the same paths as (0, 2), which keeps them all
       const Path& light = s >= 2 && t >= 2 ? pool.for_strategy(s, t) : pool.own_path();
       if (s > static_cast<int>(light.size())) continue;
-      Vertex sampled;
       Point2 raster{};
       const Color c = connect(scene, camera, light, cam, s, t, sampler, sampled, raster, counters);
       if (!is_black(c)) visit(light, s, t, c, sampled, raster);
@@ -122,7 +143,7 @@ void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const Bd
 template <class Sampler, class Visit>
 void for_each_strategy(const Scene& scene, const PinholeCamera& camera, const BdptOptions& opt,
                        const Subpaths& paths, Sampler& sampler, TraceCounters& counters, const Visit& visit) {
-  for_each_strategy(scene, camera, opt, paths.camera, LightPool{&paths.light}, sampler, counters,
+  for_each_strategy(scene, camera, opt, paths.camera, LightPool(paths.light), sampler, counters,
                     [&](const Path&, int s, int t, const Color& c, const Vertex& sampled, const Point2& raster) {
                       visit(s, t, c, sampled, raster);
                     });
@@ -156,7 +177,7 @@ Color bdpt_sample(const Scene& scene, const PinholeCamera& camera, const BdptOpt
   }
 
   Color L(0.f);
-  const LightPool own{&paths.light};
+  const LightPool own(paths.light);
   for_each_strategy(scene, camera, opt, paths.camera, pool != nullptr ? *pool : own, sampler, counters,
                     [&](const Path& light, int s, int t, Color c, const Vertex& sampled, const Point2& raster) {
                       c *= mis_weight(scene, camera, light, paths.camera, sampled, s, t, opt.heuristic,
