@@ -16,6 +16,7 @@
 #pragma once
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -56,7 +57,7 @@ inline constexpr int kBdptRrDepth = 2;
 // door); measured on block means from single pixels to 32x32 blocks, no block shape lost (at
 // equal spp on the door, 64 seeds: pixels 0.69x the relMSE, the groups' 1x16 blocks 0.96x,
 // 32x32 blocks 0.99x; README, "Speed"; benchmarks/bench_bdpt_pool.py). Each sample costs
-// 6-8 % more (the same rays): at equal time the door gains 1.3-1.4x, the Cornell box about
+// 3-7 % more (the same rays): at equal time the door gains 1.3-1.4x, the Cornell box about
 // breaks even and the caustic box loses up to 9 %. A light vertex cache [Davidovic, Krivanek,
 // Hasan, Slusallek 2014, sec. 4.3] shares light vertices across the whole image; groups within a
 // tile row keep the image a function of the seed, whatever the threads or passes. The light
@@ -86,7 +87,8 @@ struct BdptOptions : EstimatorOptions, GuidingOptions {
       throw std::invalid_argument("strategy_images needs a bounded max_depth >= 1");
     }
     if (light_pool < 1 || light_pool > kBdptLightPoolMax) {
-      throw std::invalid_argument("light_pool must be within [1, 16]: the pixels of a tile row");
+      throw std::invalid_argument("light_pool must be within [1, " + std::to_string(kBdptLightPoolMax) +
+                                  "]: the pixels of a tile row");
     }
   }
 };
