@@ -69,21 +69,27 @@ inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) 
 // pixels: each pixel's connection takes a uniformly drawn subpath, and each subpath serves one
 // pixel of the group per strategy, as in classic BDPT (no subpath is used twice while another
 // goes unused).
+// Strategy (s, t)'s half of a hash of (key, strategy): hash_combine(key, s << 32 | t) is
+// mix64(key ^ mix_strategy(s, t)).
+constexpr uint64_t mix_strategy(int s, int t) {
+  return mix64(static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+}
+
 struct LightPool {
-  // mix64(s << 32 | t), tabulated for s, t < kStrategyHashes.
+  // mix_strategy, tabulated for s, t < kStrategyHashes.
   static constexpr int kStrategyHashes = 16;
   static constexpr std::array<uint64_t, kStrategyHashes * kStrategyHashes> kStrategyHash = [] {
     std::array<uint64_t, kStrategyHashes * kStrategyHashes> table{};
     for (int s = 0; s < kStrategyHashes; ++s) {
       for (int t = 0; t < kStrategyHashes; ++t) {
-        table[static_cast<size_t>(s * kStrategyHashes + t)] = mix64(static_cast<uint64_t>(s) << 32 | uint64_t(t));
+        table[static_cast<size_t>(s * kStrategyHashes + t)] = mix_strategy(s, t);
       }
     }
     return table;
   }();
   static uint64_t strategy_hash(int s, int t) {
-    if (s < kStrategyHashes && t < kStrategyHashes) return kStrategyHash[static_cast<size_t>(s * kStrategyHashes + t)];
-    return mix64(static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+    if (s >= kStrategyHashes || t >= kStrategyHashes) return mix_strategy(s, t);
+    return kStrategyHash[static_cast<size_t>(s * kStrategyHashes + t)];
   }
 
   const Path* paths;
@@ -102,8 +108,7 @@ struct LightPool {
   const Path& for_strategy(int s, int t) const {
     if (count == 1) return paths[own];
     // The shift in [0, count) by multiply and shift (Lemire 2019), no division: this runs for
-    // every strategy of every sample. hash_combine(key, s << 32 | t), with the strategy's half
-    // from a table.
+    // every strategy of every sample.
     const uint64_t h = mix64(key ^ strategy_hash(s, t));
     const uint32_t shift = static_cast<uint32_t>(((h >> 32) * count) >> 32);
     const uint32_t k = own + shift;

@@ -9,6 +9,7 @@
 #include "check.h"
 #include "lobe_records.h"
 #include "core/sampler.h"
+#include "pathspace/bdpt_sample.h"
 #include "pathspace/path.h"
 #include "pathspace/path_tracer.h"
 #include "pathspace/path_tracer_lanes.h"
@@ -592,4 +593,18 @@ TEST_CASE("path_tracer_lanes_render_the_scalar_image_bit_for_bit") {
     }
   }
   CHECK(builds > 0);  // the baseline build runs on every x86-64 CPU
+}
+
+// The light pool's shifts (bdpt_sample.h) hash each strategy as hash_combine(key, s << 32 | t),
+// from the table (s, t < 16) and beyond it alike.
+TEST_CASE("light_pool_strategy_hashes_are_hash_combines") {
+  const uint64_t key = 0x243f6a8885a308d3ull;
+  for (int s = 0; s < 40; ++s) {
+    for (int t = 0; t < 40; ++t) {
+      CHECK(mix64(key ^ LightPool::strategy_hash(s, t)) ==
+            hash_combine(key, static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t)));
+    }
+  }
+  // Control: another strategy's entry differs.
+  CHECK(mix64(key ^ LightPool::strategy_hash(3, 2)) != hash_combine(key, static_cast<uint64_t>(2) << 32 | 3u));
 }
