@@ -204,7 +204,9 @@ def test_light_pool_keeps_the_expectation() -> None:
     18-pixel rows (the tiles' rows hold 16 and 2 pixels): per pixel (Welch, each pixel's own
     variance) and on the image mean over 8 seeds each (the seeds' scatter: the pixels of a
     group, like light tracing's splats, correlate, so summed pixel variances would understate
-    the mean's). A 5% dimmer light fails the same mean test. stats["light_pool"] says which ran."""
+    the mean's). A 5% dimmer light fails the same mean test, and a 20% dimmer one the same
+    per-pixel test (at 256 spp a 5% one passes it; seeds 200-202 gave pass fractions of 0.39-0.43
+    at 20% and 0.89-0.96 at 10%). stats["light_pool"] says which ran."""
     scene = scenes.cornell_box(resolution=(18, 12))
     dim = scenes.cornell_box(resolution=(18, 12), light_scale=0.95)
 
@@ -228,6 +230,9 @@ def test_light_pool_keeps_the_expectation() -> None:
         assert _welch(pooled[0], classic[0], 1).pass_fraction >= 0.99
         assert mean_z(pooled, classic) < 5.0
     assert mean_z(renders(None, 200, on=dim), classic) > 5.0, "a 5% dimmer light went unnoticed"
+    dimmer = scenes.cornell_box(resolution=(18, 12), light_scale=0.8)
+    wrong = dualight.render(dimmer, "bdpt", spp=256, max_depth=6, seed=200, progress=False)
+    assert _welch(wrong, classic[0], 1).pass_fraction < 0.99, "a 20% dimmer light went unnoticed"
 
 
 def test_light_pool_reaches_the_core_but_not_guided_bdpt() -> None:
