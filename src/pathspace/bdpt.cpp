@@ -46,28 +46,27 @@ void trace_row_light_subpaths(const Scene& scene, const BdptOptions& options, in
                               uint32_t s, Subpaths& w, TraceCounters& counters) {
   const WalkLimits limits{options.max_depth, options.rr_depth};
   const uint64_t seed = hash_combine(options.seed, kLightPoolSeed);
+  const int size = options.light_pool;
   w.row_light.resize(static_cast<size_t>(x1 - x0));
+  w.row_longest.assign(static_cast<size_t>((x1 - x0 + size - 1) / size), 0);
   w.row_x0 = x0;
   w.row_key = hash_combine(hash_combine(seed, static_cast<uint64_t>(y)), s);
   for (int x = x0; x < x1; ++x) {
     Sampler sampler(seed, static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x), s);
-    light_subpath(scene, sampler, limits, w.row_light[static_cast<size_t>(x - x0)], counters);
-  }
-  const int size = options.light_pool;
-  w.row_longest.assign(static_cast<size_t>((x1 - x0 + size - 1) / size), 0);
-  for (int k = 0; k < x1 - x0; ++k) {
-    uint32_t& longest = w.row_longest[static_cast<size_t>(k / size)];
-    longest = std::max(longest, static_cast<uint32_t>(w.row_light[static_cast<size_t>(k)].size()));
+    Path& light = w.row_light[static_cast<size_t>(x - x0)];
+    light_subpath(scene, sampler, limits, light, counters);
+    uint32_t& longest = w.row_longest[static_cast<size_t>((x - x0) / size)];
+    longest = std::max(longest, static_cast<uint32_t>(light.size()));
   }
 }
 
 // Pixel x's light pool: its group of `size` pixels of the row whose subpaths w.row_light holds.
 LightPool light_pool_of(const Subpaths& w, int x, int size) {
   const int k = x - w.row_x0, n = static_cast<int>(w.row_light.size());
-  const int first = k / size * size;
+  const int group = k / size, first = group * size;
   return {w.row_light.data() + first, static_cast<uint32_t>(std::min(size, n - first)),
           static_cast<uint32_t>(k - first), hash_combine(w.row_key, static_cast<uint64_t>(w.row_x0 + first)),
-          w.row_longest[static_cast<size_t>(k / size)]};
+          w.row_longest[static_cast<size_t>(group)]};
 }
 
 RenderStats drive_bdpt(const Scene& scene, const PinholeCamera& camera, const BdptOptions& options,

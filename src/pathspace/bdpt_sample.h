@@ -62,6 +62,12 @@ inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) 
   record_incident(paths.light, paths.light_arrived, TransportMode::Importance, *rec.importance);
 }
 
+// Strategy (s, t)'s half of a hash of (key, strategy): hash_combine(key, s << 32 | t) is
+// mix64(key ^ mix_strategy(s, t)).
+constexpr uint64_t mix_strategy(int s, int t) {
+  return mix64(static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
+}
+
 // The light subpaths a sample's connections take theirs from (BdptOptions::light_pool): the
 // `count` subpaths of its pool group, the sample's own at `own`. Strategy (s, t) of the group's
 // pixel k takes the subpath k + shift(s, t) (mod count), where the shift, drawn uniformly per
@@ -69,12 +75,6 @@ inline void record_subpaths(const Subpaths& paths, const SubpathRecording& rec) 
 // pixels: each pixel's connection takes a uniformly drawn subpath, and each subpath serves one
 // pixel of the group per strategy, as in classic BDPT (no subpath is used twice while another
 // goes unused).
-// Strategy (s, t)'s half of a hash of (key, strategy): hash_combine(key, s << 32 | t) is
-// mix64(key ^ mix_strategy(s, t)).
-constexpr uint64_t mix_strategy(int s, int t) {
-  return mix64(static_cast<uint64_t>(s) << 32 | static_cast<uint32_t>(t));
-}
-
 struct LightPool {
   // mix_strategy, tabulated for s, t < kStrategyHashes.
   static constexpr int kStrategyHashes = 16;
