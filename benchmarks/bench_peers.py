@@ -152,6 +152,23 @@ def cpu() -> dict[str, Any]:
     }
 
 
+def environment(started: float, load: tuple[float, float, float]) -> dict[str, Any]:
+    """The machine and the run a JSON summary records: ``started`` on ``time.perf_counter``,
+    ``load`` the load averages at the start."""
+    import mitsuba as mi
+
+    return {
+        "cpu_count": os.cpu_count(),
+        "cpu": cpu(),
+        "platform": platform.platform(),
+        "python": platform.python_version(),
+        "mitsuba": mi.__version__,
+        "load_average_at_start": load,
+        "load_average_at_end": os.getloadavg(),
+        "wall_seconds": time.perf_counter() - started,
+    }
+
+
 def set_threads(threads: int) -> None:
     """Mitsuba's (Dr.Jit's) thread pool; dualight takes ``threads`` per render."""
     import drjit as dr
@@ -253,19 +270,8 @@ def main() -> None:
                 f"{w} {r[w]['samples_per_second'] / 1e6:.2f} M" for w in ("dualight", *PEERS)
             )
             print(f"{'':>29}samples/s: {rates}", flush=True)
-    import mitsuba as mi
-
     summary = {
-        "environment": {
-            "cpu_count": os.cpu_count(),
-            "cpu": cpu(),
-            "platform": platform.platform(),
-            "python": platform.python_version(),
-            "mitsuba": mi.__version__,
-            "load_average_at_start": load,
-            "load_average_at_end": os.getloadavg(),
-            "wall_seconds": time.perf_counter() - started,
-        },
+        "environment": environment(started, load),
         "budget_seconds": args.budget,
         "seeds": args.seeds,
         "lanes": args.lanes,
