@@ -14,12 +14,13 @@ ratio there may land on either side of 1 by chance. Here:
   one process, in alternating order, so that the machine's drift falls on both; the geometric
   mean of the pairs' time ratios with a 95 % interval (two standard errors of the log ratio).
 - **Efficiency** (1 / (relMSE x seconds)) is their quotient; its interval combines both on the
-  log scale.
+  log scale (two standard errors each: the pairs' and the bootstrap's spread).
 
 Both renderers get the same scene (``Scene.to_mitsuba``), box filter, independent sampler and
 path length, as in ``bench_peers.py``. Writes ``benchmarks/results/bench_peers_paired.json``.
 
-    python benchmarks/bench_peers_paired.py --intersections robust   # about 8 minutes
+    python benchmarks/bench_peers_paired.py                          # about 13 minutes
+    python benchmarks/bench_peers_paired.py --intersections robust   # about 7 minutes
 """
 
 from __future__ import annotations
@@ -43,6 +44,15 @@ from bench_bdpt import RESULTS, errors  # noqa: E402
 from bench_peers import NAMES, environment, mitsuba_scene, prepare, render_mitsuba, set_threads  # noqa: E402
 
 PEER = "llvm_ad_rgb"
+
+
+def options(info: dict[str, Any]) -> dict[str, Any]:
+    """render's keywords that match the reference's (and so Mitsuba's) settings."""
+    return {
+        "max_depth": int(info["max_depth"]),
+        "rr_depth": int(info["rr_depth"]),
+        "sampler": "independent",
+    }
 
 
 def log_interval(mean_log: float, se_log: float) -> dict[str, float]:
@@ -88,15 +98,6 @@ def error_per_sample(name: str, robust: bool, seeds: int, spp: int, threads: int
     }
 
 
-def options(info: dict[str, Any]) -> dict[str, Any]:
-    """render's keywords that match the reference's (and so Mitsuba's) settings."""
-    return {
-        "max_depth": int(info["max_depth"]),
-        "rr_depth": int(info["rr_depth"]),
-        "sampler": "independent",
-    }
-
-
 def samples_per_second(
     name: str, robust: bool, reps: int, spp: int, threads: int
 ) -> dict[str, Any]:
@@ -106,6 +107,9 @@ def samples_per_second(
     set_threads(threads)
     mscene = mitsuba_scene(scene, PEER, info)
     render_mitsuba(mscene, PEER, 4, seed=999)  # JIT compile
+    dualight.render(
+        scene, "path", spp=4, seed=999, threads=threads, progress=False, **options(info)
+    )
     logs = []
     for r in range(reps):
         seconds = {}
