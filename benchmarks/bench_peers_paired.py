@@ -31,6 +31,7 @@ import math
 import os
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -65,14 +66,30 @@ def log_interval(mean_log: float, se_log: float) -> dict[str, float]:
     }
 
 
-def error_per_sample(name: str, robust: bool, seeds: int, spp: int, threads: int) -> dict[str, Any]:
-    """relMSE x spp of both renderers over ``seeds`` renders each, and dualight's ratio to
-    Mitsuba's with a bootstrap interval (resampling each renderer's seeds)."""
+@dataclass
+class Setup:
+    """A scene in one Embree mode, its reference, and Mitsuba's load of it."""
+
+    scene: dualight.Scene
+    ref: np.ndarray
+    ref_var: np.ndarray
+    info: dict[str, Any]
+    mscene: Any
+
+
+def setup(name: str, robust: bool) -> Setup:
+    """Scene ``name`` (bench_peers.prepare), Embree's robust mode on or off in both renderers."""
     scene, ref, ref_var, info = prepare(name)
     scene.robust_intersections = robust
+    return Setup(scene, ref, ref_var, info, mitsuba_scene(scene, PEER, info))
+
+
+def error_per_sample(p: Setup, seeds: int, spp: int, threads: int) -> dict[str, Any]:
+    """relMSE x spp of both renderers over ``seeds`` renders each, and dualight's ratio to
+    Mitsuba's with a bootstrap interval (resampling each renderer's seeds)."""
+    scene, ref, ref_var, info, mscene = p.scene, p.ref, p.ref_var, p.info, p.mscene
     full = np.ones(ref.shape[:2], dtype=bool)
     set_threads(threads)
-    mscene = mitsuba_scene(scene, PEER, info)
     ours, theirs = [], []
     for seed in range(1, seeds + 1):
         image = dualight.render(
@@ -98,14 +115,10 @@ def error_per_sample(name: str, robust: bool, seeds: int, spp: int, threads: int
     }
 
 
-def samples_per_second(
-    name: str, robust: bool, reps: int, spp: int, threads: int
-) -> dict[str, Any]:
+def samples_per_second(p: Setup, reps: int, spp: int, threads: int) -> dict[str, Any]:
     """dualight's samples per second over Mitsuba's, from ``reps`` interleaved pairs of renders."""
-    scene, _, _, info = prepare(name)
-    scene.robust_intersections = robust
+    scene, info, mscene = p.scene, p.info, p.mscene
     set_threads(threads)
-    mscene = mitsuba_scene(scene, PEER, info)
     render_mitsuba(mscene, PEER, 4, seed=999)  # JIT compile
     dualight.render(
         scene, "path", spp=4, seed=999, threads=threads, progress=False, **options(info)
@@ -149,11 +162,11 @@ def main() -> None:
     started, load = time.perf_counter(), os.getloadavg()
     results: dict[str, Any] = {}
     for name, mode in [(n, m) for n in names for m in modes]:
-        robust = mode == "robust"
-        error = error_per_sample(name, robust, args.seeds, args.error_spp, thread_counts[-1])
+        p = setup(name, mode == "robust")
+        error = error_per_sample(p, args.seeds, args.error_spp, thread_counts[-1])
         entry: dict[str, Any] = {"error_per_sample": error}
         for threads in thread_counts:
-            speed = samples_per_second(name, robust, args.reps, args.spp * threads, threads)
+            speed = samples_per_second(p, args.reps, args.spp * threads, threads)
             efficiency = log_interval(
                 math.log(speed["ratio"] / error["ratio"]),
                 math.hypot(speed["se_log"], error["se_log"]),
