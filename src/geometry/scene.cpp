@@ -204,6 +204,11 @@ void Scene::intersect(const int32_t* active, RayHit16& p, Coherence coherence) c
   alignas(64) float tmax[RayHit16::kLanes];  // the rays' own, for past_start_plane
   std::memcpy(tmax, p.tmax, sizeof tmax);
   accel_->intersect(active, p, coherence);
+  // Whether any lane hit at t = 0, lane-wide: a branch per lane, mispredicted where rays escape,
+  // cost the caustic box 1 % of its render time.
+  int32_t at_start = 0;
+  for (int i = 0; i < RayHit16::kLanes; ++i) at_start |= (p.prim[i] != RayHit::kNoHit) & (p.tmax[i] == 0.f);
+  if (at_start == 0) return;
   for (int i = 0; i < RayHit16::kLanes; ++i) {
     if (p.prim[i] == RayHit::kNoHit || p.tmax[i] != 0.f) continue;
     // Rare: as intersect() below.

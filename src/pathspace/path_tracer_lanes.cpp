@@ -101,6 +101,8 @@ PathLanesChoice choose_path_lanes(const Scene& scene, const PathTracerOptions& o
     throw std::invalid_argument("this CPU cannot run the lanes' instruction set asked for");
   }
   if (scene.emitter_count() == 0) return {std::nullopt, "the scene has no emitters"};
+  if (scene.emitter_count() > LaneTriangle::kMaxEmitters) return {std::nullopt, "more than 2^28 - 1 emitters"};
+  if (scene.triangle_count() > kMaxLaneTriangles) return {std::nullopt, "more than 2^27 - 1 triangles"};
   if (options.lanes != LaneIsa::Auto) return {kernels_for(options.lanes), ""};
   // Materials the lanes do not compute lane-wide (kLaneOther) go lane by lane through the scalar
   // code, on any share of the scene: the packets still pay. One thread, 64x64, 128 spp, M
@@ -127,11 +129,12 @@ PathLanesScene path_lanes_scene(const Scene& scene, const PinholeCamera& camera,
     LaneTriangle& t = ps.triangles[prim];
     for (int c = 0; c < 3; ++c) copy(scene.vertex(prim, c), t.p[c]);
     copy(scene.normal(prim), t.n);
-    t.bsdf = lane_bsdf(scene.material(prim), t.albedo);
-    t.smooth = scene.smooth_shaded(prim) ? -1 : 0;
-    ps.smooth = ps.smooth || t.smooth != 0;
+    const int32_t bsdf = lane_bsdf(scene.material(prim), t.albedo);
+    const bool smooth = scene.smooth_shaded(prim);
+    ps.smooth = ps.smooth || smooth;
     const Emitter* e = scene.emitter_at(prim);
-    t.emitter = e == nullptr ? -1 : static_cast<int32_t>(e - scene.emitters().data());
+    const auto emitter_plus_one = e == nullptr ? 0 : static_cast<int32_t>(e - scene.emitters().data()) + 1;
+    t.packed = emitter_plus_one << 3 | (smooth ? 4 : 0) | bsdf;
   }
   for (const Emitter& e : scene.emitters()) ps.emitters.push_back(lane_emitter(scene, e));
   ps.environment = scene.environment();
