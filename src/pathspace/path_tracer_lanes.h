@@ -49,9 +49,9 @@ namespace dualight {
 // The BSDFs the lanes compute lane-wide, each as the scalar member does; kLaneOther: any other
 // member, or a textured material, evaluated lane by lane by the scalar code itself.
 constexpr int32_t kLaneLambertian = 0, kLaneMirror = 1, kLaneDielectric = 2, kLaneOther = 3;
-// A triangle in one cache line: a hit's gathers touch one line per lane. (At 72 bytes, two lines
-// per lane and a table of 2.9 MB, the caustic box's 40972 triangles missed the cache on their
-// first gather in 3 % of the render's time.)
+// A triangle in one cache line (at 72 bytes each row spanned two): a hit's gathers touch one line
+// per lane. On the caustic box (40972 triangles, a 2.6 MB table) the first of them still waits
+// for memory, 3 % of the render's time: the row's latency, which one line or two both pay.
 struct alignas(64) LaneTriangle {
   float p[3][3];      // corners
   float n[3];         // unit geometric normal (the shading normal too, unless smooth)
