@@ -19,7 +19,7 @@ ratio there may land on either side of 1 by chance. Here:
 Both renderers get the same scene (``Scene.to_mitsuba``), box filter, independent sampler and
 path length, as in ``bench_peers.py``. Writes ``benchmarks/results/bench_peers_paired.json``.
 
-    python benchmarks/bench_peers_paired.py                          # about 13 minutes
+    python benchmarks/bench_peers_paired.py                          # 13 to 16 minutes
     python benchmarks/bench_peers_paired.py --intersections robust   # about 7 minutes
 """
 
