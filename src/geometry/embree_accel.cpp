@@ -364,6 +364,20 @@ constexpr bool same_layout() {
          offsetof(RayHit16, inst) == offsetof(R, hit.instID);
 }
 
+// values[i] = value where mask[i] is -1 (else 0), lane by lane without a branch: bit masks.
+template <class T>
+void set_where(const int32_t* mask, T* values, T value) {
+  static_assert(sizeof(T) == sizeof(uint32_t));
+  uint32_t bits[RayHit16::kLanes], v;
+  std::memcpy(bits, values, sizeof bits);
+  std::memcpy(&v, &value, sizeof v);
+  for (int i = 0; i < RayHit16::kLanes; ++i) {
+    const auto m = static_cast<uint32_t>(mask[i]);
+    bits[i] = (bits[i] & ~m) | (v & m);
+  }
+  std::memcpy(values, bits, sizeof bits);
+}
+
 // Embree's lane masks (-1: trace) for the active lanes whose rays it accepts (embree_accepts),
 // and the ray fields the caller does not set.
 void prepare_lanes(const int32_t* active, RayHit16& p, int* valid) {
@@ -392,9 +406,10 @@ void EmbreeAccel::occluded(const int32_t* active, RayHit16& p, const HitFilter* 
   prepare_lanes(active, p, valid);
   if constexpr (same_layout() && offsetof(RTCRayHit16, ray) == 0) {
     if (impl_->packet_width == 16) {
-      for (int i = 0; i < kLanes; ++i) {
-        if (active[i] != 0 && valid[i] == 0) p.tmax[i] = -std::numeric_limits<float>::infinity();
-      }
+      // Without a branch per lane (mispredicted where lanes differ): masks, as set_where.
+      alignas(64) int32_t refused[kLanes];
+      for (int i = 0; i < kLanes; ++i) refused[i] = -static_cast<int32_t>((active[i] != 0) & (valid[i] == 0));
+      set_where(refused, p.tmax, -std::numeric_limits<float>::infinity());
       FilterContext fc{};
       fc.lane_filters = filters;
       rtc_occluded<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRay16*>(&p), fc, filters != nullptr);
@@ -416,9 +431,11 @@ void EmbreeAccel::intersect(const int32_t* active, RayHit16& p, Coherence cohere
   if constexpr (same_layout()) {
     if (impl_->packet_width == 16) {
       rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p), coherence);
+      alignas(64) int32_t missed[kLanes];  // without a branch per lane, as in occluded above
       for (int i = 0; i < kLanes; ++i) {
-        if (valid[i] == 0 || p.geom[i] == RTC_INVALID_GEOMETRY_ID) p.prim[i] = RayHit::kNoHit;
+        missed[i] = -static_cast<int32_t>((valid[i] == 0) | (p.geom[i] == RTC_INVALID_GEOMETRY_ID));
       }
+      set_where(missed, p.prim, RayHit::kNoHit);
       return;
     }
   }
