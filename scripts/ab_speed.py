@@ -14,6 +14,7 @@ build (``--env-a NAME=VALUE``), for switches of a scratch build.
         --config-settings=build-dir=/tmp/ab/build .
     .venv/bin/python scripts/ab_speed.py --a installed --b /tmp/ab/new --method bdpt
     .venv/bin/python scripts/ab_speed.py --a installed --b installed     # A/A: the noise
+    .venv/bin/python scripts/ab_speed.py --b /tmp/ab/new --method path --intersections fast
 
 Prints, per scene, each build's median samples per second and the median of the per-turn ratios
 B / A (> 1: B is faster); ``--out`` writes every turn's figures as JSON.
@@ -35,25 +36,31 @@ SCENES = ("cornell", "caustics", "door")
 RES = 64
 
 
-def make_scene(name: str) -> Any:
+def make_scene(name: str, robust: bool = True) -> Any:
+    """Scene ``name`` with Embree's robust mode on or off."""
     from dualight import scenes
 
     if name == "cornell":
-        return scenes.cornell_box(resolution=(RES, RES))
-    if name == "caustics":
-        return scenes.cornell_box(resolution=(RES, RES), variant="caustics")
-    if name == "door":
-        return scenes.door_ajar(resolution=(RES, RES))
-    raise ValueError(f"unknown scene {name!r}; choose from {', '.join(SCENES)}")
+        scene = scenes.cornell_box(resolution=(RES, RES))
+    elif name == "caustics":
+        scene = scenes.cornell_box(resolution=(RES, RES), variant="caustics")
+    elif name == "door":
+        scene = scenes.door_ajar(resolution=(RES, RES))
+    else:
+        raise ValueError(f"unknown scene {name!r}; choose from {', '.join(SCENES)}")
+    scene.robust_intersections = robust
+    return scene
 
 
-def worker(site: str, method: str, options: dict[str, Any], scene_names: list[str]) -> None:
+def worker(
+    site: str, method: str, options: dict[str, Any], scene_names: list[str], robust: bool
+) -> None:
     """Renders `scene spp seed` lines from stdin, one samples-per-second figure each to stdout."""
     if site != "installed":
         sys.path.insert(0, site)
     import dualight
 
-    built = {name: make_scene(name) for name in scene_names}
+    built = {name: make_scene(name, robust) for name in scene_names}
     for scene in built.values():  # warm-up: first-call costs stay out of the figures
         dualight.render(scene, method, spp=2, seed=1, threads=1, progress=False, **options)
     print(json.dumps({"ready": dualight.__file__}), flush=True)
@@ -88,6 +95,8 @@ def start_worker(
         args.options,
         "--scenes",
         args.scenes,
+        "--intersections",
+        args.intersections,
     ]
     process = subprocess.Popen(
         command,
@@ -127,6 +136,9 @@ def main() -> None:
         "--options", default='{"max_depth": 8}', help="render()'s other keywords, as JSON"
     )
     parser.add_argument("--scenes", default=",".join(SCENES))
+    parser.add_argument(
+        "--intersections", choices=("robust", "fast"), default="robust", help="Embree's mode"
+    )
     parser.add_argument("--spp", type=int, default=16, help="samples per pixel per turn")
     parser.add_argument("--turns", type=int, default=24, help="turns per build and scene")
     parser.add_argument("--core", type=int, default=0, help="the CPU both workers run on")
@@ -135,7 +147,13 @@ def main() -> None:
     args = parser.parse_args()
     scene_names = [s for s in args.scenes.split(",") if s]
     if args.worker is not None:
-        worker(args.worker, args.method, json.loads(args.options), scene_names)
+        worker(
+            args.worker,
+            args.method,
+            json.loads(args.options),
+            scene_names,
+            args.intersections == "robust",
+        )
         return
     for name in scene_names:
         if name not in SCENES:

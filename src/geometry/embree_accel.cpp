@@ -235,11 +235,38 @@ bool packet_valid(const RayPacket& rays, int* valid) {
   return any != 0;
 }
 
+SceneHandle new_scene(RTCDevice device, int flags) {
+  SceneHandle scene(rtcNewScene(device));
+  rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene.get(), static_cast<RTCSceneFlags>(flags));
+  return scene;
+}
+
+// A scene without flags (fast mode, no filters) of the triangles whose buffers another
+// geometry owns (vertices padded for Embree's 16-byte loads, as it allocated them).
+SceneHandle scene_sharing(RTCDevice device, const float* vertices, size_t n_vertices, const uint32_t* indices,
+                          size_t n_triangles) {
+  SceneHandle scene = new_scene(device, RTC_SCENE_FLAG_NONE);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0, 3 * sizeof(float),
+                             n_vertices);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, 3 * sizeof(uint32_t),
+                             n_triangles);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene.get(), geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene.get());
+  check_device(device, "scene commit");
+  return scene;
+}
+
 }  // namespace
 
 struct EmbreeAccel::Impl {
   DeviceHandle device;
-  SceneHandle scene;
+  SceneHandle scene;    // every query's, with the filter flag (occlusion's filters)
+  SceneHandle closest;  // fast mode: the closest-hit queries', without it (else null)
+  RTCScene closest_hits() const { return closest ? closest.get() : scene.get(); }
   // Embree's widest packet queries this CPU (and Embree's build) runs: 16 needs AVX-512, 8 AVX;
   // 1: lane by lane. Every width gives the same results.
   int packet_width = 1;
@@ -258,15 +285,13 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
       break;
     }
   }
-  impl_->scene.reset(rtcNewScene(device));
-  RTCScene scene = impl_->scene.get();
-  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
 #if DUALIGHT_EMBREE4
   const int filter_flag = RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS;
 #else
   const int filter_flag = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
 #endif
-  rtcSetSceneFlags(scene, static_cast<RTCSceneFlags>(filter_flag | (robust ? RTC_SCENE_FLAG_ROBUST : 0)));
+  impl_->scene = new_scene(device, filter_flag | (robust ? RTC_SCENE_FLAG_ROBUST : 0));
+  RTCScene scene = impl_->scene.get();
 
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const size_t n_vertices = positions.size() / 3, n_triangles = triangles.size() / 3;
@@ -283,6 +308,7 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
   rtcReleaseGeometry(geom);
   rtcCommitScene(scene);
   check_device(device, "scene commit");
+  if (!robust) impl_->closest = scene_sharing(device, vb, n_vertices, ib, n_triangles);
 }
 
 EmbreeAccel::~EmbreeAccel() = default;
@@ -294,11 +320,11 @@ RayHit EmbreeAccel::intersect(const Ray& ray) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 #if DUALIGHT_EMBREE4
-  rtcIntersect1(impl_->scene.get(), &rh);
+  rtcIntersect1(impl_->closest_hits(), &rh);
 #else
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect1(impl_->scene.get(), &ctx, &rh);
+  rtcIntersect1(impl_->closest_hits(), &ctx, &rh);
 #endif
   RayHit out;
   if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
@@ -340,10 +366,10 @@ void EmbreeAccel::intersect(const RayPacket& rays, HitPacket& hits, Coherence co
   alignas(64) int valid[RayPacket::kLanes];
   if (!packet_valid(rays, valid)) return;
   if (impl_->packet_width == 16) {
-    intersect_lanes<RTCRayHit16, 16>(impl_->scene.get(), rays, valid, 0, hits, coherence);
+    intersect_lanes<RTCRayHit16, 16>(impl_->closest_hits(), rays, valid, 0, hits, coherence);
   } else {
     for (int first = 0; first < RayPacket::kLanes; first += 8) {
-      intersect_lanes<RTCRayHit8, 8>(impl_->scene.get(), rays, valid, first, hits, coherence);
+      intersect_lanes<RTCRayHit8, 8>(impl_->closest_hits(), rays, valid, first, hits, coherence);
     }
   }
 }
@@ -430,7 +456,7 @@ void EmbreeAccel::intersect(const int32_t* active, RayHit16& p, Coherence cohere
   prepare_lanes(active, p, valid);
   if constexpr (same_layout()) {
     if (impl_->packet_width == 16) {
-      rtc_intersect<16>(valid, impl_->scene.get(), reinterpret_cast<RTCRayHit16*>(&p), coherence);
+      rtc_intersect<16>(valid, impl_->closest_hits(), reinterpret_cast<RTCRayHit16*>(&p), coherence);
       alignas(64) int32_t missed[kLanes];  // without a branch per lane, as in occluded above
       for (int i = 0; i < kLanes; ++i) {
         missed[i] = -static_cast<int32_t>((valid[i] == 0) | (p.geom[i] == RTC_INVALID_GEOMETRY_ID));

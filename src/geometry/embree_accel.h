@@ -78,6 +78,10 @@ class EmbreeAccel {
   // lower its arithmetic accuracy: no ray slips through where triangles meet. Without it rays
   // trace 24-30 % faster but leak through the edges of closed meshes (Mitsuba 3's default, its
   // scene's embree_use_robust_intersections = false).
+  // In fast mode the closest-hit queries go to a second BVH of the same triangles, built without
+  // the filter flag the shadow rays' exact visibility test needs: Embree then runs its filter-free
+  // kernels for them, as for a scene without filters (Mitsuba 3's). The same hits; twice the BVH's
+  // memory and build time. (Robust mode has no filter-free kernels in Embree 3.)
   // max_packet: the widest of Embree's packet queries to use where the CPU has them (16 with
   // AVX-512, 8 with AVX; 1: lane by lane). Less than 16 is for tests: every width finds the same.
   EmbreeAccel(const std::vector<float>& positions, const std::vector<uint32_t>& triangles, bool robust = true,
