@@ -235,6 +235,7 @@ bool packet_valid(const RayPacket& rays, int* valid) {
   return any != 0;
 }
 
+// An empty scene of high build quality (spatial splits) with the given RTCSceneFlags.
 SceneHandle new_scene(RTCDevice device, int flags) {
   SceneHandle scene(rtcNewScene(device));
   rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
