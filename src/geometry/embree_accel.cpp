@@ -235,6 +235,15 @@ bool packet_valid(const RayPacket& rays, int* valid) {
   return any != 0;
 }
 
+// Commits `geom`, hands it to `scene` (which then owns it) and builds the scene's BVH.
+void commit_into(RTCDevice device, RTCScene scene, RTCGeometry geom) {
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  check_device(device, "scene commit");
+}
+
 // An empty scene of high build quality (spatial splits) with the given RTCSceneFlags.
 SceneHandle new_scene(RTCDevice device, int flags) {
   SceneHandle scene(rtcNewScene(device));
@@ -253,11 +262,7 @@ SceneHandle scene_sharing(RTCDevice device, const float* vertices, size_t n_vert
                              n_vertices);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, 3 * sizeof(uint32_t),
                              n_triangles);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene.get(), geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene.get());
-  check_device(device, "scene commit");
+  commit_into(device, scene.get(), geom);
   return scene;
 }
 
@@ -292,7 +297,6 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
   const int filter_flag = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
 #endif
   impl_->scene = new_scene(device, filter_flag | (robust ? RTC_SCENE_FLAG_ROBUST : 0));
-  RTCScene scene = impl_->scene.get();
 
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const size_t n_vertices = positions.size() / 3, n_triangles = triangles.size() / 3;
@@ -304,11 +308,7 @@ EmbreeAccel::EmbreeAccel(const std::vector<float>& positions, const std::vector<
   check_device(device, "buffer allocation");
   std::copy(positions.begin(), positions.end(), vb);
   std::copy(triangles.begin(), triangles.end(), ib);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene);
-  check_device(device, "scene commit");
+  commit_into(device, impl_->scene.get(), geom);
   if (!robust) impl_->closest = scene_sharing(device, vb, n_vertices, ib, n_triangles);
 }
 
