@@ -77,11 +77,21 @@ inline vf gather(const float* base, vi index) {
 #endif
 }
 
-// PCG32 generators (core/rng.h), one per lane, stepped together: lane i yields what its own
-// Pcg32 would, where `active` (the others do not advance).
 using vu = uint32_t __attribute__((vector_size(4 * kLanes)));
 using vu64 = uint64_t __attribute__((vector_size(8 * kLanes)));
 using vi64 = int64_t __attribute__((vector_size(8 * kLanes)));
+
+// mix64 and hash_combine (core/rng.h), lane-wide.
+inline vu64 mix64(vu64 z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+inline vu64 hash_combine(vu64 a, vu64 b) { return mix64(a ^ mix64(b)); }
+
+// PCG32 generators (core/rng.h), one per lane, stepped together: lane i yields what its own
+// Pcg32 would, where `active` (the others do not advance).
 struct LanePcg32 {
   vu64 state, inc;
   vf next_float(vi active) {
@@ -105,12 +115,6 @@ struct LaneSobol {
   vu64 pixel_seed{};
   vu reversed_index{}, dimension{};
 
-  static vu64 mix64(vu64 z) {
-    z += 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
   static vu reverse_bits(vu x) {
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);

@@ -24,6 +24,12 @@ class PinholeCamera {
   int height() const { return height_; }
   Vec3 origin() const { return origin_; }
   Vec3 forward() const { return forward_; }
+  // The image plane's axes and half extents at distance 1 (generate_ray's, for code that
+  // computes its rays lane-wide: pathspace/path_lanes_kernel.h).
+  Vec3 right() const { return right_; }
+  Vec3 up() const { return up_; }
+  float tan_half_x() const { return tan_half_x_; }
+  float tan_half_y() const { return tan_half_y_; }
 
   // Film position (in pixels) uniform over the film for u uniform in [0, 1)^2, kept below the
   // width and height, which float rounding of u * width could reach.
